@@ -1,0 +1,53 @@
+/// @file The `stiffsoft` command: run a scene, check written frames, print versions.
+
+#include <CLI/CLI.hpp>
+#include <gmsh.h>
+#include <petscversion.h>
+#include <spdlog/spdlog.h>
+#include <vtkVersionMacros.h>
+
+#include <Eigen/Core>
+#include <iostream>
+
+#include "check_command.hpp"
+#include "io/scene_schema.hpp"
+#include "run_command.hpp"
+
+namespace {
+std::string version_text() {
+  return std::string("stiffsoft ") + STIFFSOFT_VERSION + " (Eigen " + std::to_string(EIGEN_WORLD_VERSION) + "." +
+         std::to_string(EIGEN_MAJOR_VERSION) + "." + std::to_string(EIGEN_MINOR_VERSION) + ", PETSc " +
+         std::to_string(PETSC_VERSION_MAJOR) + "." + std::to_string(PETSC_VERSION_MINOR) + "." +
+         std::to_string(PETSC_VERSION_SUBMINOR) + ", gmsh " + GMSH_API_VERSION + ", VTK " + VTK_VERSION + ")";
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"stiffsoft: stiff (affine) and soft solids in contact, intersection-free"};
+  app.set_version_flag("--version", version_text());
+  app.require_subcommand(1);
+
+  stiffsoft::RunOptions run;
+  CLI::App* run_cmd = app.add_subcommand("run", "run a JSON scene, writing VTK frames for ParaView");
+  run_cmd->add_option("scene", run.scene, "scene file (.json)")->required();
+  run_cmd->add_option("-o,--out", run.out, "output folder")->required();
+  run_cmd->add_option("--steps", run.steps, "number of steps (default: the scene's duration)")->check(CLI::PositiveNumber);
+  run_cmd->add_option("--threads", run.threads, "worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+
+  std::filesystem::path pvd;
+  CLI::App* check_cmd = app.add_subcommand("check", "exact intersection check of every frame of a .pvd series");
+  check_cmd->add_option("pvd", pvd, "DIR/NAME.pvd written by `stiffsoft run`")->required();
+
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (*run_cmd) return stiffsoft::run_scene(run);
+    if (*check_cmd) return stiffsoft::check_frames(pvd);
+  } catch (const stiffsoft::SceneError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,108 @@
+#include "run_command.hpp"
+
+#include <spdlog/spdlog.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <memory>
+
+#include "io/atomic_file.hpp"
+#include "io/frame_writer.hpp"
+#include "io/scene_builder.hpp"
+#include "io/scene_loader.hpp"
+#include "io/stats_writer.hpp"
+#include "progress.hpp"
+
+namespace stiffsoft {
+
+namespace {
+
+const std::vector<std::string> kStatsColumns{
+    "step", "time", "newton_iterations", "line_search_steps", "smallest_ccd_step", "converged",
+    "contacts", "smallest_distance", "kinetic_energy", "potential_energy", "momentum_x", "momentum_y",
+    "momentum_z", "orthogonality_error", "kappa", "seconds_broad_phase", "seconds_ccd",
+    "seconds_assembly", "seconds_solve", "seconds_step"};
+
+std::vector<double> stats_row(const StepStats& s) {
+  return {double(s.step), s.time, double(s.newton.iterations), double(s.newton.line_search_steps),
+          s.newton.smallest_ccd_step, s.newton.converged ? 1.0 : 0.0, double(s.contacts),
+          s.smallest_distance, s.kinetic_energy, s.potential_energy, s.linear_momentum.x(),
+          s.linear_momentum.y(), s.linear_momentum.z(), s.orthogonality_error, s.kappa,
+          s.times.broad_phase, s.times.ccd, s.times.assembly, s.times.solve, s.seconds};
+}
+
+std::vector<BodyFrame> frame_of(const Simulation& sim, const Eigen::MatrixX3d& x0) {
+  const Model& model = sim.model();
+  const Eigen::MatrixX3d x = sim.surface(), v = sim.surface_velocity(), fc = sim.contact_forces(),
+                         ff = sim.friction_forces();
+  std::vector<BodyFrame> frames;
+  for (const BodyModel& body : model.bodies) {
+    const int n = body.vertex_end - body.vertex_begin, nf = body.face_end - body.face_begin;
+    BodyFrame f;
+    f.name = body.name;
+    f.model = motion_name(body.motion);
+    f.x = x.middleRows(body.vertex_begin, n);
+    f.F = model.mesh.F.middleRows(body.face_begin, nf).array() - body.vertex_begin;
+    f.velocity = v.middleRows(body.vertex_begin, n);
+    f.displacement = f.x - x0.middleRows(body.vertex_begin, n);
+    f.contact_force = fc.middleRows(body.vertex_begin, n);
+    f.friction_force = ff.middleRows(body.vertex_begin, n);
+    frames.push_back(std::move(f));
+  }
+  return frames;
+}
+
+}  // namespace
+
+int run_scene(const RunOptions& options) {
+  std::unique_ptr<tbb::global_control> threads;
+  if (options.threads > 0)
+    threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, options.threads);
+
+  SceneDescription scene = load_scene(options.scene);
+  Model model = build_model(scene, options.scene);
+  resolve_relative_defaults(scene, model);
+  const SimulationSettings settings = simulation_settings(scene);
+  const int total = options.steps ? *options.steps : int(std::ceil(scene.time.duration / scene.time.dt - 1e-9));
+  spdlog::info("{}: {} bodies, {} DOFs, {} triangles; h = {} s, d̂ = {:.3g} m, ε_v = {:.3g} m/s, ε_d = {:.3g} m/s, {} steps",
+               scene.name, model.bodies.size(), model.num_dofs, model.mesh.F.rows(), settings.h, settings.dhat,
+               settings.eps_v, settings.tolerance, total);
+
+  std::filesystem::create_directories(options.out);
+  write_file_atomically(options.out / "scene.resolved.json",
+                        [&](std::ostream& os) { os << resolved_scene_json(scene).dump(2) << '\n'; });
+  Simulation sim(std::move(model), settings);
+  const Eigen::MatrixX3d x0 = sim.surface();
+  FrameWriter frames(options.out, scene.name);
+  StatsWriter stats(options.out / "stats.csv", kStatsColumns);
+  frames.write(0.0, frame_of(sim, x0));
+
+  const double frame_dt = *scene.output.frame_dt;
+  double next_frame = frame_dt;
+  int failed = 0;
+  Progress progress(total);
+  for (int k = 0; k < total; ++k) {
+    const StepStats s = sim.step();
+    stats.add_row(stats_row(s));
+    if (!s.newton.converged) {
+      ++failed;
+      spdlog::warn("step {} (t = {:.4f} s): Newton did not converge after {} iterations: {} (last step speed {:.3g} m/s, tolerance {:.3g} m/s)",
+                   s.step, s.time, s.newton.iterations, s.newton.failure, s.newton.last_step_speed, settings.tolerance);
+    }
+    if (sim.time() >= next_frame - 1e-9 * frame_dt || k + 1 == total) {
+      frames.write(sim.time(), frame_of(sim, x0));
+      stats.flush();
+      next_frame += frame_dt;
+    }
+    progress.update(s.step, s.time, s.newton.iterations);
+  }
+  progress.finish();
+  stats.flush();
+  spdlog::info("wrote {} frames to {}; {} of {} steps did not converge", frames.frame_count(),
+               frames.pvd_path().string(), failed, total);
+  return failed ? 3 : 0;
+}
+
+}  // namespace stiffsoft

@@ -1,0 +1,21 @@
+#pragma once
+/// @file `stiffsoft run SCENE.json -o DIR`.
+
+#include <filesystem>
+#include <optional>
+
+namespace stiffsoft {
+
+/// Options of `stiffsoft run`.
+struct RunOptions {
+  std::filesystem::path scene;   ///< scene file
+  std::filesystem::path out;     ///< output folder
+  std::optional<int> steps;      ///< run this many steps instead of the scene's duration
+  int threads = 0;               ///< worker threads; 0: all cores
+};
+
+/// Runs a scene, writing frames, stats.csv and scene.resolved.json into the output folder.
+/// Returns the process exit code (0: every step's Newton converged, 3: some did not).
+int run_scene(const RunOptions& options);
+
+}  // namespace stiffsoft

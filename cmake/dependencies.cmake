@@ -1,0 +1,29 @@
+# Every dependency is a Debian package (scripts/setup.sh installs them); nothing is downloaded.
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+find_package(TBB REQUIRED)
+find_package(nlohmann_json REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(spdlog REQUIRED)
+find_package(CGAL REQUIRED)
+find_package(VTK REQUIRED COMPONENTS IOXML CommonCore CommonDataModel)
+find_package(MPI REQUIRED COMPONENTS C CXX)
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(PETSC REQUIRED IMPORTED_TARGET PETSc)
+
+# SuiteSparse 5.12 ships neither a CMake config nor a pkg-config file.
+find_path(CHOLMOD_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse REQUIRED)
+find_library(CHOLMOD_LIB cholmod REQUIRED)
+add_library(stiffsoft_cholmod INTERFACE)
+target_include_directories(stiffsoft_cholmod SYSTEM INTERFACE ${CHOLMOD_INCLUDE_DIR})
+target_link_libraries(stiffsoft_cholmod INTERFACE ${CHOLMOD_LIB})
+
+# gmsh 4.8 ships no CMake config.
+find_path(GMSH_INCLUDE_DIR gmsh.h REQUIRED)
+find_library(GMSH_LIB gmsh REQUIRED)
+add_library(stiffsoft_gmsh INTERFACE)
+target_include_directories(stiffsoft_gmsh SYSTEM INTERFACE ${GMSH_INCLUDE_DIR})
+target_link_libraries(stiffsoft_gmsh INTERFACE ${GMSH_LIB})
+
+if(STIFFSOFT_TESTS)
+  find_package(GTest REQUIRED)
+endif()

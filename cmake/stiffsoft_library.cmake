@@ -1,0 +1,25 @@
+# stiffsoft_library(NAME) — one static library per top-level folder, from every .cpp below it.
+function(stiffsoft_library name)
+  file(GLOB_RECURSE sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cpp)
+  add_library(stiffsoft_${name} STATIC ${sources})
+  add_library(stiffsoft::${name} ALIAS stiffsoft_${name})
+  target_include_directories(stiffsoft_${name} PUBLIC ${PROJECT_SOURCE_DIR})
+  target_compile_options(stiffsoft_${name} PRIVATE -Wall -Wextra)
+endfunction()
+
+# stiffsoft_tests(NAME LIBS...) — one GoogleTest executable from tests/NAME/*_test.cpp.
+function(stiffsoft_tests name)
+  file(GLOB_RECURSE sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${name}/*_test.cpp)
+  if(NOT sources)
+    return()
+  endif()
+  add_executable(${name}_tests ${sources})
+  target_link_libraries(${name}_tests PRIVATE ${ARGN} stiffsoft_test_support GTest::gtest_main)
+  add_dependencies(${name}_tests stiffsoft)
+  target_compile_definitions(${name}_tests PRIVATE
+    STIFFSOFT_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    STIFFSOFT_SHARED_DIR="${PROJECT_SOURCE_DIR}/../shared"
+    STIFFSOFT_BINARY="$<TARGET_FILE:stiffsoft>")
+  gtest_discover_tests(${name}_tests DISCOVERY_TIMEOUT 60
+    PROPERTIES LABELS ${name})
+endfunction()

@@ -1,0 +1,53 @@
+#include "coupling/model.hpp"
+
+namespace stiffsoft {
+
+Eigen::MatrixX3d Model::surface(const Eigen::VectorXd& q) const {
+  Eigen::MatrixX3d x(mesh.x_bar.rows(), 3);
+  for (int b = 0; b < int(bodies.size()); ++b) {
+    const abd::Vector12d qb = body_q(b, q);
+    const Eigen::Matrix3d A = abd::affine_matrix(qb);
+    const Eigen::RowVector3d p = abd::translation(qb).transpose();
+    const BodyModel& body = bodies[b];
+    const int n = body.vertex_end - body.vertex_begin;
+    x.middleRows(body.vertex_begin, n) =
+        (mesh.x_bar.middleRows(body.vertex_begin, n) * A.transpose()).rowwise() + p;
+  }
+  return x;
+}
+
+Eigen::MatrixX3d Model::surface_step(const Eigen::VectorXd& dq) const {
+  Eigen::MatrixX3d dx = Eigen::MatrixX3d::Zero(mesh.x_bar.rows(), 3);
+  for (const BodyModel& body : bodies) {
+    if (body.dof < 0) continue;
+    const abd::Vector12d d = dq.segment<12>(body.dof);
+    const Eigen::Matrix3d dA = abd::affine_matrix(d);
+    const int n = body.vertex_end - body.vertex_begin;
+    dx.middleRows(body.vertex_begin, n) =
+        (mesh.x_bar.middleRows(body.vertex_begin, n) * dA.transpose()).rowwise() +
+        abd::translation(d).transpose();
+  }
+  return dx;
+}
+
+Eigen::VectorXd Model::initial_q() const {
+  Eigen::VectorXd q(num_dofs);
+  for (const BodyModel& body : bodies)
+    if (body.dof >= 0) q.segment<12>(body.dof) = body.q0;
+  return q;
+}
+
+Eigen::VectorXd Model::initial_qdot() const {
+  Eigen::VectorXd qdot(num_dofs);
+  for (const BodyModel& body : bodies)
+    if (body.dof >= 0) qdot.segment<12>(body.dof) = abd::rigid_velocity(body.q0, body.v0, body.w0);
+  return qdot;
+}
+
+double Model::bounding_box_diagonal() const {
+  const Eigen::MatrixX3d x = surface(initial_q());
+  if (x.rows() == 0) return 1.0;
+  return (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm();
+}
+
+}  // namespace stiffsoft

@@ -1,0 +1,118 @@
+#include "coupling/newton.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace stiffsoft {
+
+namespace {
+
+double total_energy(const std::vector<EnergyTerm*>& terms, const Configuration& c) {
+  double e = 0;
+  for (const EnergyTerm* t : terms) e += t->value(c);
+  return e;
+}
+
+void update_all(const std::vector<EnergyTerm*>& terms, const Configuration& c) {
+  for (EnergyTerm* t : terms) t->update(c);
+}
+
+/// The Newton direction p = −H⁻¹g; if the projected Hessian is numerically singular, shifts
+/// its diagonal until the factorisation succeeds.
+bool newton_direction(const Model& model, const std::vector<EnergyTerm*>& terms, const Configuration& c,
+                      const Eigen::VectorXd& g, LinearSolver& solver, std::vector<std::int64_t>& pattern,
+                      PhaseTimes& times, Eigen::VectorXd& p) {
+  BlockHessian H(model.num_dofs / 12);
+  {
+    ScopedTimer timer(times.assembly);
+    for (const EnergyTerm* t : terms) t->add_hessian(c, H);
+  }
+  ScopedTimer timer(times.solve);
+  Eigen::SparseMatrix<double> A = H.upper();
+  std::vector<std::int64_t> new_pattern = H.pattern();
+  if (new_pattern != pattern || pattern.empty()) {
+    solver.analyze_pattern(A);
+    pattern = std::move(new_pattern);
+  }
+  double shift = 0;
+  const double scale = A.diagonal().cwiseAbs().maxCoeff();
+  for (int attempt = 0; attempt < 8; ++attempt) {
+    if (solver.factorize(A)) {
+      p = solver.solve(-g);
+      if (p.allFinite()) return true;
+    }
+    const double next = shift == 0 ? 1e-10 * scale : 10 * shift;
+    for (int i = 0; i < A.rows(); ++i) A.coeffRef(i, i) += next - shift;
+    shift = next;
+  }
+  return false;
+}
+
+}  // namespace
+
+NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>& terms,
+                             Eigen::VectorXd& q, LinearSolver& solver, const NewtonSettings& settings,
+                             PhaseTimes& times) {
+  NewtonReport report;
+  Eigen::MatrixX3d x = model.surface(q);
+  update_all(terms, {q, x});
+  double E = total_energy(terms, {q, x});
+  std::vector<std::int64_t> pattern;
+  Eigen::VectorXd g(q.size()), p(q.size()), q_trial(q.size());
+
+  for (; report.iterations < settings.max_iterations; ++report.iterations) {
+    const Configuration c{q, x};
+    g.setZero();
+    {
+      ScopedTimer timer(times.assembly);
+      for (const EnergyTerm* t : terms) t->add_gradient(c, g);
+    }
+    if (!newton_direction(model, terms, c, g, solver, pattern, times, p)) {
+      report.failure = "the linear solve failed even with a regularised Hessian";
+      break;
+    }
+    const Eigen::MatrixX3d dx = model.surface_step(p);
+    report.last_step_speed = (dx.rows() ? dx.rowwise().norm().maxCoeff() : 0.0) / settings.h;
+    if (report.last_step_speed < settings.tolerance) {
+      report.converged = true;
+      break;
+    }
+    double alpha = 1.0;
+    for (const EnergyTerm* t : terms) alpha = std::min(alpha, t->max_step(c, p, dx));
+    report.smallest_ccd_step = std::min(report.smallest_ccd_step, alpha);
+    if (!(alpha > 0)) {
+      report.failure = "CCD allowed no step along the Newton direction";
+      break;
+    }
+    bool accepted = false;
+    Eigen::MatrixX3d x_trial;
+    double E_trial = 0;
+    for (int ls = 0; ls < settings.max_line_search; ++ls) {
+      ++report.line_search_steps;
+      q_trial = q + alpha * p;
+      x_trial = model.surface(q_trial);
+      update_all(terms, {q_trial, x_trial});
+      E_trial = total_energy(terms, {q_trial, x_trial});
+      if (E_trial <= E) {
+        accepted = true;
+        break;
+      }
+      alpha *= 0.5;
+    }
+    if (!accepted) {
+      update_all(terms, {q, x});
+      report.failure = "the line search found no decrease of the energy";
+      break;
+    }
+    q.swap(q_trial);
+    x.swap(x_trial);
+    for (EnergyTerm* t : terms) t->end_iteration({q, x});
+    E = total_energy(terms, {q, x});
+  }
+  if (!report.converged && report.failure.empty())
+    report.failure = "the iteration cap (" + std::to_string(settings.max_iterations) + ") was reached";
+  report.energy = E;
+  return report;
+}
+
+}  // namespace stiffsoft

@@ -1,0 +1,40 @@
+#pragma once
+/// @file Projected Newton with a CCD-bounded backtracking line search that accepts only
+/// decreasing energy (IPC, Li et al. 2020, Alg. 1; ABD, Lan et al. 2022, Alg. 1).
+
+#include <string>
+#include <vector>
+
+#include "coupling/linear_solver/linear_solver.hpp"
+#include "coupling/model.hpp"
+#include "coupling/phase_times.hpp"
+#include "coupling/terms/energy_term.hpp"
+
+namespace stiffsoft {
+
+/// Newton's stopping rule and limits.
+struct NewtonSettings {
+  double tolerance = 1e-2;   ///< ε_d (m/s): stop when max_k ‖(Φp)_k‖ / h < ε_d
+  double h = 1e-2;           ///< time step (s), to turn the step into a speed
+  int max_iterations = 200;  ///< cap on iterations
+  int max_line_search = 60;  ///< cap on halvings of α
+};
+
+/// What one minimisation did.
+struct NewtonReport {
+  bool converged = false;        ///< the stopping rule was met
+  int iterations = 0;            ///< Newton iterations (linear solves)
+  int line_search_steps = 0;     ///< energy evaluations in line searches
+  double smallest_ccd_step = 1;  ///< smallest α bound returned by CCD
+  double energy = 0;             ///< E at the result
+  double last_step_speed = 0;    ///< max surface step / h of the last direction (m/s)
+  std::string failure;           ///< why it stopped without converging
+};
+
+/// Minimises Σ terms over q, starting from (and overwriting) q. Terms get update() at every
+/// configuration they are evaluated at.
+NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>& terms,
+                             Eigen::VectorXd& q, LinearSolver& solver, const NewtonSettings& settings,
+                             PhaseTimes& times);
+
+}  // namespace stiffsoft

@@ -1,0 +1,119 @@
+#include "coupling/simulation.hpp"
+
+#include <chrono>
+#include <limits>
+
+#include "libabd/orthogonality_potential.hpp"
+
+namespace stiffsoft {
+
+namespace {
+BarrierSettings barrier_settings(const Model& model, const SimulationSettings& s) {
+  BarrierSettings b;
+  b.dhat = s.dhat;
+  b.kappa = s.kappa;
+  b.bbox_diagonal = model.bounding_box_diagonal();
+  double mass = 0;
+  int n = 0;
+  for (const BodyModel& body : model.bodies)
+    if (body.motion == Motion::Dynamic) {
+      mass += body.mass;
+      ++n;
+    }
+  b.average_mass = n ? mass / n : 1.0;
+  return b;
+}
+}  // namespace
+
+Simulation::Simulation(Model model, const SimulationSettings& settings)
+    : m_model(std::move(model)),
+      m_settings(settings),
+      m_solver(make_linear_solver(settings.linear_solver)),
+      m_inertia(m_model, settings.kinematic_weight),
+      m_orthogonality(m_model, integrator_beta(settings.integrator) * settings.h * settings.h),
+      m_barrier(m_model, barrier_settings(m_model, settings), &m_times) {
+  if (settings.mu > 0) m_friction.emplace(m_model, settings.mu, settings.eps_v * settings.h);
+  m_q = m_model.initial_q();
+  m_qdot = m_model.initial_qdot();
+  m_q_prev = m_q - settings.h * m_qdot;
+  m_qdot_prev = m_qdot;
+  m_gravity_q = Eigen::VectorXd::Zero(m_model.num_dofs);
+  for (const BodyModel& body : m_model.bodies)
+    if (body.motion == Motion::Dynamic) m_gravity_q.segment<3>(body.dof) = settings.gravity;
+}
+
+StepStats Simulation::step() {
+  const auto start = std::chrono::steady_clock::now();
+  m_times = PhaseTimes{};
+  const double h = m_settings.h;
+  Eigen::VectorXd q_tilde =
+      predicted_q(m_settings.integrator, h, m_q, m_qdot, m_q_prev, m_qdot_prev, m_gravity_q);
+  for (const BodyModel& body : m_model.bodies)
+    if (body.motion == Motion::Kinematic)
+      q_tilde.segment<12>(body.dof) = abd::rigid_motion(body.q0, body.v0, body.w0, m_time + h);
+  m_inertia.set_target(q_tilde);
+
+  // Lag friction and balance κ at the start-of-step configuration.
+  const Eigen::MatrixX3d x_n = m_model.surface(m_q);
+  const Configuration c_n{m_q, x_n};
+  m_barrier.update(c_n);
+  Eigen::VectorXd grad_other = Eigen::VectorXd::Zero(m_q.size());
+  m_inertia.add_gradient(c_n, grad_other);
+  m_orthogonality.add_gradient(c_n, grad_other);
+  m_barrier.initialize_stiffness(c_n, grad_other);
+  std::vector<EnergyTerm*> terms{&m_inertia, &m_orthogonality, &m_barrier};
+  if (m_friction) {
+    m_friction->lag(c_n, m_barrier);
+    terms.push_back(&*m_friction);
+  }
+
+  NewtonSettings ns;
+  ns.tolerance = m_settings.tolerance;
+  ns.h = h;
+  ns.max_iterations = m_settings.max_iterations;
+  Eigen::VectorXd q_new = m_q;
+  StepStats stats;
+  stats.newton = newton_minimize(m_model, terms, q_new, *m_solver, ns, m_times);
+
+  const Eigen::VectorXd qdot_new = updated_qdot(m_settings.integrator, h, q_new, m_q, m_q_prev);
+  m_q_prev = m_q;
+  m_qdot_prev = m_qdot;
+  m_q = q_new;
+  m_qdot = qdot_new;
+  m_time += h;
+  ++m_step;
+
+  stats.step = m_step;
+  stats.time = m_time;
+  const Eigen::MatrixX3d x = m_model.surface(m_q);
+  stats.contacts = int(m_barrier.constraints().size());
+  stats.smallest_distance = m_barrier.min_active_distance({m_q, x});
+  stats.kappa = m_barrier.kappa();
+  for (const BodyModel& body : m_model.bodies) {
+    if (body.motion != Motion::Dynamic) continue;
+    const abd::Vector12d qd = m_qdot.segment<12>(body.dof);
+    stats.kinetic_energy += 0.5 * qd.dot(body.M * qd);
+    stats.potential_energy -= body.mass * m_settings.gravity.dot(m_q.segment<3>(body.dof));
+    stats.linear_momentum += body.mass * qd.head<3>();
+    stats.orthogonality_error =
+        std::max(stats.orthogonality_error, abd::orthogonality_error(m_q.segment<12>(body.dof)));
+  }
+  stats.times = m_times;
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return stats;
+}
+
+Eigen::MatrixX3d Simulation::contact_forces() const {
+  const Eigen::MatrixX3d x = m_model.surface(m_q);
+  const double scale = integrator_beta(m_settings.integrator) * m_settings.h * m_settings.h;
+  return m_barrier.vertex_forces({m_q, x}) / scale;
+}
+
+Eigen::MatrixX3d Simulation::friction_forces() const {
+  const Eigen::MatrixX3d x = m_model.surface(m_q);
+  if (!m_friction) return Eigen::MatrixX3d::Zero(x.rows(), 3);
+  const double scale = integrator_beta(m_settings.integrator) * m_settings.h * m_settings.h;
+  return m_friction->vertex_forces({m_q, x}) / scale;
+}
+
+}  // namespace stiffsoft

@@ -1,0 +1,31 @@
+#pragma once
+/// @file Inertia of the incremental potential: ½ (q − q̃)ᵀ M (q − q̃), block-diagonal M.
+
+#include <vector>
+
+#include "coupling/model.hpp"
+#include "coupling/terms/energy_term.hpp"
+
+namespace stiffsoft {
+
+/// ½ Σ_b w_b (q_b − q̃_b)ᵀ M_b (q_b − q̃_b). w_b = 1 for dynamic bodies; kinematic bodies use a
+/// large w_b, which pulls them onto their prescribed configuration q̃_b.
+class InertiaTerm final : public EnergyTerm {
+ public:
+  /// The term for every body with DOFs; `kinematic_weight` is w_b of kinematic bodies.
+  InertiaTerm(const Model& model, double kinematic_weight);
+  const char* name() const override { return "inertia"; }
+  /// Sets q̃ for the coming step.
+  void set_target(const Eigen::VectorXd& q_tilde) { m_q_tilde = q_tilde; }
+  /// The current q̃.
+  const Eigen::VectorXd& target() const { return m_q_tilde; }
+  double value(const Configuration& c) const override;
+  void add_gradient(const Configuration& c, Eigen::VectorXd& g) const override;
+  void add_hessian(const Configuration& c, BlockHessian& H) const override;
+
+ private:
+  std::vector<abd::Matrix12d> m_M;  // w_b M_b per DOF block
+  Eigen::VectorXd m_q_tilde;
+};
+
+}  // namespace stiffsoft

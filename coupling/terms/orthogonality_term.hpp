@@ -1,0 +1,29 @@
+#pragma once
+/// @file β h² Σ_b V⊥(q_b): the orthogonality potentials of the dynamic affine bodies.
+
+#include <vector>
+
+#include "coupling/model.hpp"
+#include "coupling/terms/energy_term.hpp"
+
+namespace stiffsoft {
+
+/// β h² Σ_b κ_b ν_b ‖A_b A_bᵀ − I‖²_F over dynamic bodies (Lan et al. 2022, eq. 6).
+class OrthogonalityTerm final : public EnergyTerm {
+ public:
+  /// `scale` is β h² (s²).
+  OrthogonalityTerm(const Model& model, double scale);
+  const char* name() const override { return "orthogonality"; }
+  double value(const Configuration& c) const override;
+  void add_gradient(const Configuration& c, Eigen::VectorXd& g) const override;
+  void add_hessian(const Configuration& c, BlockHessian& H) const override;
+
+ private:
+  struct Body {
+    int block;
+    double kappa_volume;  // β h² κ ν
+  };
+  std::vector<Body> m_bodies;
+};
+
+}  // namespace stiffsoft

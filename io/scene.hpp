@@ -1,0 +1,84 @@
+#pragma once
+/// @file The scene as read from JSON: plain settings structs, filled with every default.
+/// The scene loader (io/scene_loader.hpp) is the only place that turns JSON into these.
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "coupling/integrator.hpp"
+#include "meshing/primitive.hpp"
+
+namespace stiffsoft {
+
+
+/// `time`: step size, duration, integrator.
+struct TimeDescription {
+  double dt = 1e-2;        ///< time step h (s), > 0
+  double duration = 1.0;   ///< simulated time (s), > 0
+  Integrator integrator = Integrator::BackwardEuler;
+};
+
+/// `contact`: the IPC barrier and friction. Lengths in metres, speeds in m/s; an unset value
+/// is relative to the scene's bounding-box diagonal (see docs/units.md).
+struct ContactDescription {
+  std::optional<double> dhat;   ///< barrier activation distance d̂ (m); default 1e-3 × diagonal
+  double mu = 0.0;              ///< Coulomb friction coefficient, ≥ 0; 0 turns friction off
+  std::optional<double> eps_v;  ///< static/kinetic smoothing speed ε_v (m/s); default 1e-3 × diagonal / s
+  std::optional<double> kappa;  ///< barrier stiffness (Pa·m, fixed); default adaptive (IPC's rule)
+};
+
+/// `solver`: Newton's stopping rule and the linear solver.
+struct SolverDescription {
+  std::optional<double> tolerance;  ///< ε_d (m/s): stop when max surface-point step / h < ε_d; default 1e-2 × diagonal / s
+  int max_iterations = 200;         ///< Newton iteration cap per step, ≥ 1
+  std::string linear = "cholmod";   ///< linear solver backend
+};
+
+/// `output`: what is written and how often.
+struct OutputDescription {
+  std::optional<double> frame_dt;  ///< time between written frames (s); default max(dt, 1/60)
+};
+
+/// How a body moves.
+enum class BodyKind {
+  Affine,    ///< dynamic affine body, 12 DOFs
+  Fixed,     ///< static obstacle, no DOFs
+  Kinematic  ///< prescribed linear and angular velocity, no DOFs
+};
+
+/// Where a body's surface comes from: a file or a primitive.
+struct MeshDescription {
+  std::filesystem::path file;              ///< .obj or .stl (absolute, resolved against the scene's folder); empty for a primitive
+  std::optional<PrimitiveShape> primitive; ///< set when the mesh is a primitive
+};
+
+/// One entry of `bodies`.
+struct BodyDescription {
+  std::string name;                      ///< unique, used as the ParaView block name
+  BodyKind kind = BodyKind::Affine;
+  MeshDescription mesh;
+  double density = 1000.0;               ///< kg/m³, > 0
+  double kappa = 1e8;                    ///< orthogonality stiffness κ (Pa), > 0
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();        ///< where the mesh's origin goes (m)
+  Eigen::Vector3d rotation_deg = Eigen::Vector3d::Zero();    ///< XYZ Euler angles (degrees), R = Rz Ry Rx
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();           ///< per-axis scale applied before rotation
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();        ///< initial (or prescribed) linear velocity of the centre of mass (m/s)
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();///< initial (or prescribed) angular velocity, world frame (rad/s)
+};
+
+/// A whole scene, every default filled in.
+struct SceneDescription {
+  std::string name;         ///< from the file name (stem)
+  std::string description;  ///< what the scene shows and how to run it
+  TimeDescription time;
+  Eigen::Vector3d gravity{0.0, -9.81, 0.0};  ///< m/s²
+  ContactDescription contact;
+  SolverDescription solver;
+  OutputDescription output;
+  std::vector<BodyDescription> bodies;
+};
+
+}  // namespace stiffsoft

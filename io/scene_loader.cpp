@@ -1,0 +1,258 @@
+#include "io/scene_loader.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+#include <unordered_map>
+
+namespace stiffsoft {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+Eigen::Vector3d vector3(const Json& value) {
+  return {value[0].get<double>(), value[1].get<double>(), value[2].get<double>()};
+}
+
+std::optional<double> optional_number(const Json& value) {
+  if (value.is_null()) return std::nullopt;
+  return value.get<double>();
+}
+
+Integrator integrator_from(const std::string& name) {
+  return name == "bdf2" ? Integrator::BDF2 : Integrator::BackwardEuler;
+}
+
+std::string integrator_name(Integrator integrator) {
+  return integrator == Integrator::BDF2 ? "bdf2" : "backward_euler";
+}
+
+BodyKind kind_from(const std::string& name) {
+  if (name == "fixed") return BodyKind::Fixed;
+  if (name == "kinematic") return BodyKind::Kinematic;
+  return BodyKind::Affine;
+}
+
+std::string kind_name(BodyKind kind) {
+  switch (kind) {
+    case BodyKind::Fixed: return "fixed";
+    case BodyKind::Kinematic: return "kinematic";
+    case BodyKind::Affine: break;
+  }
+  return "affine";
+}
+
+PrimitiveShape::Type primitive_from(const std::string& name) {
+  if (name == "sphere") return PrimitiveShape::Type::Sphere;
+  if (name == "cylinder") return PrimitiveShape::Type::Cylinder;
+  if (name == "torus") return PrimitiveShape::Type::Torus;
+  if (name == "plane") return PrimitiveShape::Type::Plane;
+  return PrimitiveShape::Type::Box;
+}
+
+std::string primitive_name(PrimitiveShape::Type type) {
+  switch (type) {
+    case PrimitiveShape::Type::Sphere: return "sphere";
+    case PrimitiveShape::Type::Cylinder: return "cylinder";
+    case PrimitiveShape::Type::Torus: return "torus";
+    case PrimitiveShape::Type::Plane: return "plane";
+    case PrimitiveShape::Type::Box: break;
+  }
+  return "box";
+}
+
+// The filled JSON has passed the schema, so every key is present (or absent only where a
+// primitive does not use it) and of the right type; this is plain conversion.
+MeshDescription mesh_from(const Json& mesh) {
+  MeshDescription out;
+  if (mesh.is_string()) {
+    out.file = mesh.get<std::string>();
+    return out;
+  }
+  PrimitiveShape shape;
+  shape.type = primitive_from(mesh.at("primitive").get<std::string>());
+  if (mesh.contains("size")) shape.extents = vector3(mesh["size"]);
+  if (mesh.contains("radius")) shape.radius = mesh["radius"].get<double>();
+  if (mesh.contains("minor_radius")) shape.minor_radius = mesh["minor_radius"].get<double>();
+  if (mesh.contains("height")) shape.height = mesh["height"].get<double>();
+  if (mesh.contains("resolution")) shape.resolution = mesh["resolution"].get<int>();
+  out.primitive = shape;
+  return out;
+}
+
+// What a schema entry cannot express: relations between values.
+void check_relations(const Json& scene, const std::string& file) {
+  std::unordered_map<std::string, std::size_t> first_use;
+  const Json& bodies = scene.at("bodies");
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const std::string at = "bodies[" + std::to_string(i) + "]";
+    const std::string name = bodies[i].at("name").get<std::string>();
+    if (name.empty()) throw SceneError(file, at + ".name", "must not be empty");
+    const auto [it, inserted] = first_use.emplace(name, i);
+    if (!inserted)
+      throw SceneError(file, at + ".name",
+                       "duplicate body name \"" + name + "\" (also used by bodies[" + std::to_string(it->second) +
+                           "]); names must be unique");
+    const Json& mesh = bodies[i].at("mesh");
+    if (mesh.is_object() && mesh.at("primitive") == "torus" &&
+        !(mesh.at("minor_radius").get<double>() < mesh.at("radius").get<double>()))
+      throw SceneError(file, at + ".mesh.minor_radius",
+                       "must be < radius (" + mesh.at("radius").dump() + ") (got " + mesh.at("minor_radius").dump() +
+                           ")");
+  }
+}
+
+SceneDescription scene_from(const Json& scene, const std::string& name) {
+  SceneDescription out;
+  out.name = name;
+  out.description = scene.at("description").get<std::string>();
+
+  const Json& time = scene.at("time");
+  out.time.dt = time.at("dt").get<double>();
+  out.time.duration = time.at("duration").get<double>();
+  out.time.integrator = integrator_from(time.at("integrator").get<std::string>());
+
+  out.gravity = vector3(scene.at("gravity"));
+
+  const Json& contact = scene.at("contact");
+  out.contact.dhat = optional_number(contact.at("dhat"));
+  out.contact.mu = contact.at("mu").get<double>();
+  out.contact.eps_v = optional_number(contact.at("eps_v"));
+  out.contact.kappa = optional_number(contact.at("kappa"));
+
+  const Json& solver = scene.at("solver");
+  out.solver.tolerance = optional_number(solver.at("tolerance"));
+  out.solver.max_iterations = solver.at("max_iterations").get<int>();
+  out.solver.linear = solver.at("linear").get<std::string>();
+
+  out.output.frame_dt = optional_number(scene.at("output").at("frame_dt"));
+
+  for (const Json& body : scene.at("bodies")) {
+    BodyDescription b;
+    b.name = body.at("name").get<std::string>();
+    b.kind = kind_from(body.at("kind").get<std::string>());
+    b.mesh = mesh_from(body.at("mesh"));
+    b.density = body.at("density").get<double>();
+    b.kappa = body.at("kappa").get<double>();
+    b.position = vector3(body.at("position"));
+    b.rotation_deg = vector3(body.at("rotation_deg"));
+    b.scale = vector3(body.at("scale"));
+    b.velocity = vector3(body.at("velocity"));
+    b.angular_velocity = vector3(body.at("angular_velocity"));
+    out.bodies.push_back(std::move(b));
+  }
+  return out;
+}
+
+// nlohmann reports the byte offset of a syntax error; people want line and column.
+std::string syntax_location(const std::string& text, std::size_t byte) {
+  const std::size_t end = std::min(text.size(), byte > 0 ? byte - 1 : 0);
+  std::size_t line = 1, column = 1;
+  for (std::size_t i = 0; i < end; ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
+// The part of nlohmann's message after its own location prefix.
+std::string syntax_reason(const std::string& what) {
+  const std::size_t column = what.find("column ");
+  if (column != std::string::npos) {
+    const std::size_t colon = what.find(": ", column);
+    if (colon != std::string::npos) return what.substr(colon + 2);
+  }
+  return what;
+}
+
+Json vector_json(const Eigen::Vector3d& v) { return Json::array({v.x(), v.y(), v.z()}); }
+
+Json optional_json(const std::optional<double>& value) { return value ? Json(*value) : Json(nullptr); }
+
+// The keys the schema allows for this primitive (its `when` conditions), so the
+// resolved JSON never lists a key the loader would reject.
+bool primitive_uses(const std::string& key, const std::string& primitive) {
+  for (const auto& entry : scene_schema()) {
+    if (entry.at("pointer") != "/bodies/*/mesh/" + key) continue;
+    if (!entry.contains("when")) return true;
+    const Json& values = entry["when"].at("primitive");
+    return std::find(values.begin(), values.end(), primitive) != values.end();
+  }
+  return false;
+}
+
+}  // namespace
+
+SceneDescription load_scene_from_string(const std::string& text, const std::filesystem::path& scene_folder,
+                                        const std::string& file_label, const std::string& name) {
+  Json parsed;
+  try {
+    parsed = Json::parse(text);
+  } catch (const nlohmann::json::parse_error& error) {
+    throw SceneError(file_label, syntax_location(text, error.byte), "invalid JSON: " + syntax_reason(error.what()));
+  }
+  const Json filled = apply_scene_schema(parsed, scene_folder, file_label);
+  check_relations(filled, file_label);
+  return scene_from(filled, name);
+}
+
+SceneDescription load_scene(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw SceneError(file.string(), "", "cannot open the scene file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return load_scene_from_string(buffer.str(), file.parent_path(), file.string(), file.stem().string());
+}
+
+nlohmann::json resolved_scene_json(const SceneDescription& scene) {
+  // Built in schema order; nlohmann::json (the declared return type) then sorts the keys.
+  Json out = Json::object();
+  out["description"] = scene.description;
+  out["time"] = {{"dt", scene.time.dt},
+                 {"duration", scene.time.duration},
+                 {"integrator", integrator_name(scene.time.integrator)}};
+  out["gravity"] = vector_json(scene.gravity);
+  out["contact"] = {{"dhat", optional_json(scene.contact.dhat)},
+                    {"mu", scene.contact.mu},
+                    {"eps_v", optional_json(scene.contact.eps_v)},
+                    {"kappa", optional_json(scene.contact.kappa)}};
+  out["solver"] = {{"tolerance", optional_json(scene.solver.tolerance)},
+                   {"max_iterations", scene.solver.max_iterations},
+                   {"linear", scene.solver.linear}};
+  out["output"] = {{"frame_dt", optional_json(scene.output.frame_dt)}};
+  out["bodies"] = Json::array();
+  for (const BodyDescription& body : scene.bodies) {
+    Json b = Json::object();
+    b["name"] = body.name;
+    b["kind"] = kind_name(body.kind);
+    if (body.mesh.primitive) {
+      const PrimitiveShape& shape = *body.mesh.primitive;
+      const std::string primitive = primitive_name(shape.type);
+      Json mesh = {{"primitive", primitive}};
+      if (primitive_uses("size", primitive)) mesh["size"] = vector_json(shape.extents);
+      if (primitive_uses("radius", primitive)) mesh["radius"] = shape.radius;
+      if (primitive_uses("minor_radius", primitive)) mesh["minor_radius"] = shape.minor_radius;
+      if (primitive_uses("height", primitive)) mesh["height"] = shape.height;
+      if (primitive_uses("resolution", primitive)) mesh["resolution"] = shape.resolution;
+      b["mesh"] = mesh;
+    } else {
+      b["mesh"] = body.mesh.file.string();
+    }
+    b["density"] = body.density;
+    b["kappa"] = body.kappa;
+    b["position"] = vector_json(body.position);
+    b["rotation_deg"] = vector_json(body.rotation_deg);
+    b["scale"] = vector_json(body.scale);
+    b["velocity"] = vector_json(body.velocity);
+    b["angular_velocity"] = vector_json(body.angular_velocity);
+    out["bodies"].push_back(b);
+  }
+  return nlohmann::json(out);
+}
+
+}  // namespace stiffsoft

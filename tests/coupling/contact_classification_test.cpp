@@ -1,0 +1,163 @@
+/// Classification of point–triangle and edge–edge candidates: the classified distance is the
+/// exact distance (checked against an independent brute-force minimisation), every IPC type
+/// is reached, and hand-made configurations give the expected type and local indices.
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <random>
+
+#include "coupling/contact/distance_classification.hpp"
+
+namespace stiffsoft::contact {
+namespace {
+
+using Eigen::Vector3d;
+
+/// Minimum of a convex function on [lo, hi] by ternary search (100 shrinks of 2/3).
+template <class F>
+double ternary_minimum(F f, double lo, double hi) {
+  for (int it = 0; it < 100; ++it) {
+    const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
+    if (f(m1) < f(m2)) hi = m2; else lo = m1;
+  }
+  return f(0.5 * (lo + hi));
+}
+
+/// Brute force: min over the closed triangle of ‖p − t(β₁, β₂)‖², nested ternary searches
+/// (min over β₂ of a jointly convex function is convex in β₁).
+double brute_point_triangle(const Vector3d& p, const Vector3d& t0, const Vector3d& t1, const Vector3d& t2) {
+  return ternary_minimum(
+      [&](double b1) {
+        return ternary_minimum(
+            [&](double b2) { return (p - (t0 + b1 * (t1 - t0) + b2 * (t2 - t0))).squaredNorm(); }, 0.0,
+            1.0 - b1);
+      },
+      0.0, 1.0);
+}
+
+/// Brute force: min over s, t ∈ [0, 1] of ‖ea(s) − eb(t)‖², nested ternary searches.
+double brute_segment_segment(const Vector3d& a0, const Vector3d& a1, const Vector3d& b0, const Vector3d& b1) {
+  return ternary_minimum(
+      [&](double s) {
+        return ternary_minimum([&](double t) { return ((a0 + s * (a1 - a0)) - (b0 + t * (b1 - b0))).squaredNorm(); },
+                               0.0, 1.0);
+      },
+      0.0, 1.0);
+}
+
+Vector3d random_point(std::mt19937& rng, double scale) {
+  std::uniform_real_distribution<double> u(-scale, scale);
+  return {u(rng), u(rng), u(rng)};
+}
+
+std::string type_name(const Classified& c) {
+  std::string s = c.kind == PrimitivePair::VertexVertex ? "VV" :
+                  c.kind == PrimitivePair::EdgeVertex   ? "EV" :
+                  c.kind == PrimitivePair::EdgeEdge     ? "EE" : "FV";
+  for (int i = 0; i < vertex_count(c.kind); ++i) s += std::to_string(c.local[i]);
+  return s;
+}
+
+TEST(ClassifyPointTriangle, ClassifiedDistanceEqualsBruteForceDistance) {
+  std::mt19937 rng(11);
+  std::map<std::string, int> seen;
+  for (int trial = 0; trial < 3000; ++trial) {
+    // Triangle near the origin, point from a wider box so every feature can be nearest.
+    const Vector3d t0 = random_point(rng, 1), t1 = random_point(rng, 1), t2 = random_point(rng, 1);
+    const Vector3d p = random_point(rng, 2.5);
+    const Classified c = classify_point_triangle(p, t0, t1, t2);
+    ++seen[type_name(c)];
+    const double brute = brute_point_triangle(p, t0, t1, t2);
+    const double classified = squared_distance(c.kind, gather_classified(c, pack_stencil(p, t0, t1, t2)));
+    ASSERT_NEAR(classified, brute, 1e-12 * std::max(1.0, brute)) << "trial " << trial << " " << type_name(c);
+    EXPECT_EQ(point_triangle_squared_distance(p, t0, t1, t2), classified);
+  }
+  // All seven IPC point–triangle types (P_T0..2, P_E0..2, P_T) occur.
+  for (const char* t : {"VV01", "VV02", "VV03", "EV012", "EV023", "EV031", "FV0123"})
+    EXPECT_GT(seen[t], 20) << t;
+  EXPECT_EQ(seen.size(), 7u);
+}
+
+TEST(ClassifyEdgeEdge, ClassifiedDistanceEqualsBruteForceDistance) {
+  std::mt19937 rng(12);
+  std::map<std::string, int> seen;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const Vector3d a0 = random_point(rng, 1), a1 = random_point(rng, 1);
+    const Vector3d b0 = random_point(rng, 1), b1 = random_point(rng, 1);
+    const Classified c = classify_edge_edge(a0, a1, b0, b1);
+    ++seen[type_name(c)];
+    const double brute = brute_segment_segment(a0, a1, b0, b1);
+    const double classified = squared_distance(c.kind, gather_classified(c, pack_stencil(a0, a1, b0, b1)));
+    ASSERT_NEAR(classified, brute, 1e-12 * std::max(1.0, brute)) << "trial " << trial << " " << type_name(c);
+    EXPECT_EQ(segment_segment_squared_distance(a0, a1, b0, b1), classified);
+  }
+  // All nine IPC edge–edge types (EA0_EB0.., EA_EB0.., EA0_EB.., EA_EB) occur.
+  for (const char* t : {"VV02", "VV03", "VV12", "VV13", "EV023", "EV123", "EV201", "EV301", "EE0123"})
+    EXPECT_GT(seen[t], 20) << t;
+  EXPECT_EQ(seen.size(), 9u);
+}
+
+TEST(ClassifyEdgeEdge, NearlyParallelAndDegenerateSegmentsGiveTheExactDistance) {
+  std::mt19937 rng(13);
+  for (int trial = 0; trial < 1000; ++trial) {
+    const Vector3d a0 = random_point(rng, 1), a1 = random_point(rng, 1);
+    // eb is ea shifted, stretched and tilted by an angle down to 1e-12 (or exactly parallel,
+    // or shrunk to a point), where the line–line system is singular.
+    const double tilt = trial % 4 == 0 ? 0.0 : std::pow(10.0, -12.0 + 10.0 * (trial % 7) / 6.0);
+    const double stretch = trial % 5 == 0 ? 0.0 : 0.5 + (trial % 3);
+    const Vector3d shift = random_point(rng, 1);
+    const Vector3d b0 = a0 + shift;
+    const Vector3d b1 = b0 + stretch * (a1 - a0) + tilt * random_point(rng, 1);
+    const double brute = brute_segment_segment(a0, a1, b0, b1);
+    const double exact = segment_segment_squared_distance(a0, a1, b0, b1);
+    ASSERT_TRUE(std::isfinite(exact));
+    EXPECT_NEAR(exact, brute, 1e-10 * std::max(1.0, brute)) << "trial " << trial << " tilt " << tilt;
+  }
+}
+
+TEST(ClassifyPointTriangle, DegenerateTrianglesGiveTheExactDistance) {
+  std::mt19937 rng(14);
+  for (int trial = 0; trial < 500; ++trial) {
+    const Vector3d t0 = random_point(rng, 1), t1 = random_point(rng, 1);
+    // collinear (sliver down to 1e-12) or a point
+    const double off = trial % 3 == 0 ? 0.0 : std::pow(10.0, -12.0 + 10.0 * (trial % 5) / 4.0);
+    const Vector3d t2 = trial % 7 == 0 ? t0 : t0 + 0.7 * (t1 - t0) + off * random_point(rng, 1);
+    const Vector3d t1b = trial % 7 == 0 ? t0 : t1;
+    const Vector3d p = random_point(rng, 2);
+    const double exact = point_triangle_squared_distance(p, t0, t1b, t2);
+    ASSERT_TRUE(std::isfinite(exact));
+    EXPECT_NEAR(exact, brute_point_triangle(p, t0, t1b, t2), 1e-10) << "trial " << trial;
+  }
+}
+
+TEST(ClassifyPointTriangle, HandMadeConfigurationsGiveExpectedTypes) {
+  const Vector3d t0(0, 0, 0), t1(1, 0, 0), t2(0, 1, 0);
+  const auto name = [&](const Vector3d& p) { return type_name(classify_point_triangle(p, t0, t1, t2)); };
+  EXPECT_EQ(name({0.2, 0.2, 0.5}), "FV0123");
+  EXPECT_EQ(name({0.2, 0.2, -0.5}), "FV0123");
+  EXPECT_EQ(name({-0.5, -0.5, 0.1}), "VV01");
+  EXPECT_EQ(name({1.5, -0.1, 0.1}), "VV02");
+  EXPECT_EQ(name({-0.1, 1.5, 0.1}), "VV03");
+  EXPECT_EQ(name({0.5, -0.5, 0.1}), "EV012");
+  EXPECT_EQ(name({0.8, 0.8, 0.1}), "EV023");
+  EXPECT_EQ(name({-0.5, 0.5, 0.1}), "EV031");
+}
+
+TEST(ClassifyEdgeEdge, HandMadeConfigurationsGiveExpectedTypes) {
+  const Vector3d a0(-1, 0, 0), a1(1, 0, 0);
+  const auto name = [&](const Vector3d& b0, const Vector3d& b1) {
+    return type_name(classify_edge_edge(a0, a1, b0, b1));
+  };
+  EXPECT_EQ(name({0, -1, 1}, {0, 1, 1}), "EE0123");             // crossing
+  EXPECT_EQ(name({0, 0.5, 1}, {0, 2, 1}), "EV201");             // eb0 over ea's interior
+  EXPECT_EQ(name({0, 2, 1}, {0, 0.5, 1}), "EV301");
+  EXPECT_EQ(name({-2, -1, 1}, {-2, 1, 1}), "EV023");            // ea0 beside eb's interior
+  EXPECT_EQ(name({2, -1, 1}, {2, 1, 1}), "EV123");
+  EXPECT_EQ(name({-2, -1, 1}, {-3, -2, 1}), "VV02");
+  EXPECT_EQ(name({2, 2, 1}, {2, 1, 1}), "VV13");
+  EXPECT_EQ(name({-0.5, 1, 0}, {0.5, 1, 0}), "EV201");          // parallel, overlapping: an endpoint type
+}
+
+}  // namespace
+}  // namespace stiffsoft::contact
