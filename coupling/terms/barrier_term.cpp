@@ -127,7 +127,10 @@ void BarrierTerm::end_iteration(const Configuration& c) {
 
 void BarrierTerm::initialize_stiffness(const Configuration& c, const Eigen::VectorXd& grad_other) {
   m_prev_min_distance = -1;
-  if (m_settings.kappa || m_constraints.empty()) return;
+  // Balance once, when contact first appears; re-balancing every step would change the force
+  // at a given distance from one step to the next (and with it the lagged friction).
+  if (m_settings.kappa || m_constraints.empty() || m_balanced) return;
+  m_balanced = true;
   const double saved = m_kappa;
   m_kappa = 1.0;
   Eigen::VectorXd grad_barrier = Eigen::VectorXd::Zero(grad_other.size());

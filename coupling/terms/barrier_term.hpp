@@ -37,7 +37,8 @@ class BarrierTerm final : public EnergyTerm {
   void end_iteration(const Configuration& c) override;
 
   /// IPC's initial κ by gradient balancing, clamped to [κ_min, 100 κ_min]: κ = −∇E·∇B / ‖∇B‖²,
-  /// where ∇E is the gradient of the other terms at the step's start. No-op with a fixed κ.
+  /// where ∇E is the gradient of the other terms at the step's start. Acts once, at the first
+  /// step that starts with active contacts; no-op with a fixed κ.
   void initialize_stiffness(const Configuration& c, const Eigen::VectorXd& grad_other);
   /// Current κ (J/m⁴ in squared-distance units, i.e. κ b has units of energy).
   double kappa() const { return m_kappa; }
@@ -57,6 +58,7 @@ class BarrierTerm final : public EnergyTerm {
   double m_kappa;
   double m_kappa_max;
   double m_prev_min_distance = -1;
+  bool m_balanced = false;
   std::vector<ContactConstraint> m_constraints;
 };
 

@@ -190,7 +190,7 @@ TEST(BarrierPotential, GradientAndHessianMatchFiniteDifferencesForEveryPair) {
       const double d = dhat * (0.05 + 0.9 * (trial % 10) / 9.0);
       const Vector12d x = stencil_at_distance(kind, d, rng);
       ASSERT_NEAR(squared_distance(kind, x), d * d, 1e-12);
-      const FdResult r = barrier_potential_fd({kind}, x, dhat, 1e-7 * d);
+      const FdResult r = barrier_potential_fd({kind}, x, dhat, 1e-5 * d);
       worst_g = std::max(worst_g, r.grad_error);
       worst_h = std::max(worst_h, r.hess_error);
     }
@@ -216,7 +216,7 @@ TEST(BarrierPotential, MollifiedNearlyParallelEdgesMatchFiniteDifferences) {
     ++mollified;
     // The line distance is the true one here: both closest points are interior.
     ASSERT_EQ(classify_edge_edge_stencil(x).kind, PrimitivePair::EdgeEdge);
-    const FdResult r = barrier_potential_fd(s, x, dhat, 1e-8);
+    const FdResult r = barrier_potential_fd(s, x, dhat, 1e-7);
     worst_g = std::max(worst_g, r.grad_error);
     worst_h = std::max(worst_h, r.hess_error);
   }
@@ -244,7 +244,7 @@ TEST(BarrierPotential, SegmentDistanceStencilsUseTheTrueDistanceAndMatchFiniteDi
     EXPECT_EQ(stencil_squared_distance(s, x), exact);
     // The line distance differs: it is what an unflagged stencil would (wrongly) use.
     EXPECT_LT(squared_distance(PrimitivePair::EdgeEdge, x), 0.9 * exact);
-    const FdResult r = barrier_potential_fd(s, x, dhat, 1e-8);
+    const FdResult r = barrier_potential_fd(s, x, dhat, 1e-7);
     worst_g = std::max(worst_g, r.grad_error);
     worst_h = std::max(worst_h, r.hess_error);
   }
@@ -295,9 +295,11 @@ TEST(BarrierPotential, DegenerateInputsGiveFiniteNumbers) {
             std::numeric_limits<double>::infinity());
 }
 
-TEST(BarrierPotential, ProjectedHessianIsPsdAndUnchangedWhenAlreadyPsd) {
+TEST(BarrierPotential, ProjectedHessianIsPsdAndEqualsTheFullProjection) {
+  // b' < 0 times the PSD ∇²d² makes every active barrier Hessian indefinite, so the
+  // "PSD stays untouched" property is pinned by ProjectToPsd and the friction tests instead.
   const double dhat = 0.1;
-  int already_psd = 0, indefinite = 0;
+  int indefinite = 0;
   for (PrimitivePair kind : kAllPairs) {
     std::mt19937 rng(400 + int(kind));
     for (int trial = 0; trial < 200; ++trial) {
@@ -305,19 +307,15 @@ TEST(BarrierPotential, ProjectedHessianIsPsdAndUnchangedWhenAlreadyPsd) {
       const Matrix12d H = barrier_potential_hessian({kind}, x, dhat, false);
       const Matrix12d Hp = barrier_potential_hessian({kind}, x, dhat, true);
       EXPECT_GE(min_eigenvalue(Hp), -1e-10 * Hp.norm());
+      // Projecting only the active block equals projecting the whole 12×12 matrix.
+      EXPECT_LT((Hp - project_to_psd<12>(H)).norm(), 1e-10 * H.norm());
       // inactive rows and columns stay exactly zero
       const int n = 3 * vertex_count(kind);
       EXPECT_TRUE((Hp.bottomRows(12 - n).array() == 0).all());
-      if (min_eigenvalue(H) >= 0) {
-        ++already_psd;
-        EXPECT_TRUE(Hp == H);
-      } else {
-        ++indefinite;
-        EXPECT_GT((Hp - H).norm(), 0.0);
-      }
+      if (min_eigenvalue(H) < 0) ++indefinite;
     }
   }
-  std::printf("    barrier Hessians: %d already PSD, %d indefinite\n", already_psd, indefinite);
+  std::printf("    barrier Hessians: %d of 800 indefinite before projection\n", indefinite);
   EXPECT_GT(indefinite, 0);
   // Mollified stencils too.
   std::mt19937 rng(41);
