@@ -73,41 +73,43 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
     }
     const Eigen::MatrixX3d dx = model.surface_step(p);
     report.last_step_speed = (dx.rows() ? dx.rowwise().norm().maxCoeff() : 0.0) / settings.h;
-    if (report.last_step_speed < settings.tolerance) {
-      report.converged = true;
-      break;
-    }
+    // A step below the tolerance is still taken (when it lowers E): skipping it would freeze
+    // a body whose per-step velocity change is below ε_d, e.g. a block starting to slide.
+    const bool small_step = report.last_step_speed < settings.tolerance;
     double alpha = 1.0;
     for (const EnergyTerm* t : terms) alpha = std::min(alpha, t->max_step(c, p, dx));
     report.smallest_ccd_step = std::min(report.smallest_ccd_step, alpha);
-    if (!(alpha > 0)) {
-      report.failure = "CCD allowed no step along the Newton direction";
-      break;
-    }
     bool accepted = false;
     Eigen::MatrixX3d x_trial;
-    double E_trial = 0;
-    for (int ls = 0; ls < settings.max_line_search; ++ls) {
+    for (int ls = 0; alpha > 0 && ls < settings.max_line_search; ++ls) {
       ++report.line_search_steps;
       q_trial = q + alpha * p;
       x_trial = model.surface(q_trial);
       update_all(terms, {q_trial, x_trial});
-      E_trial = total_energy(terms, {q_trial, x_trial});
-      if (E_trial <= E) {
+      if (total_energy(terms, {q_trial, x_trial}) <= E) {
         accepted = true;
         break;
       }
       alpha *= 0.5;
     }
-    if (!accepted) {
+    if (accepted) {
+      q.swap(q_trial);
+      x.swap(x_trial);
+      for (EnergyTerm* t : terms) t->end_iteration({q, x});
+      E = total_energy(terms, {q, x});
+    } else {
       update_all(terms, {q, x});
-      report.failure = "the line search found no decrease of the energy";
+    }
+    if (small_step) {
+      report.converged = true;
+      ++report.iterations;
       break;
     }
-    q.swap(q_trial);
-    x.swap(x_trial);
-    for (EnergyTerm* t : terms) t->end_iteration({q, x});
-    E = total_energy(terms, {q, x});
+    if (!accepted) {
+      report.failure = alpha > 0 ? "the line search found no decrease of the energy"
+                                 : "CCD allowed no step along the Newton direction";
+      break;
+    }
   }
   if (!report.converged && report.failure.empty())
     report.failure = "the iteration cap (" + std::to_string(settings.max_iterations) + ") was reached";

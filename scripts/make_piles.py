@@ -363,9 +363,12 @@ def make_incline(name, mu, outcome):
     offset = slab_thickness / 2 + gap + cube / 2
     return {
         "description": f"A 0.2 m cube resting on a fixed slab tilted {deg:.3f} deg (tan = 0.5), aligned with the "
-                       f"slope and 3 mm above it, mu = {mu}: {outcome} " + run_line(name),
+                       f"slope and 3 mm above it, mu = {mu}: {outcome} Newton's tolerance is 1e-5 m/s here, well "
+                       f"below the per-step velocity change a*h (~1e-3 m/s): with the default (1e-2 x diagonal / s) "
+                       f"Newton stops while static friction's stiff first step still holds the block. " + run_line(name),
         "time": {"dt": 0.01, "duration": 2.5},
         "contact": {"dhat": 1e-3, "mu": mu},
+        "solver": {"tolerance": 1e-5},
         "bodies": [
             fixed("slab", box(2.0, slab_thickness, 1.0), (0, 0, 0), (0, 0, deg)),
             body("block", box(cube, cube, cube), [offset * n for n in normal], (0, 0, deg)),
