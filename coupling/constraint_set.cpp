@@ -101,10 +101,15 @@ std::vector<ContactConstraint> build_constraints(const Model& model, const Eigen
   std::vector<ContactConstraint> all;
   for (const auto& l : local) all.insert(all.end(), l.begin(), l.end());
   std::sort(all.begin(), all.end(), less);
-  all.erase(std::unique(all.begin(), all.end(),
-                        [](const auto& a, const auto& b) { return !less(a, b) && !less(b, a); }),
-            all.end());
-  return all;
+  std::vector<ContactConstraint> merged;
+  for (const ContactConstraint& c : all) {
+    if (!merged.empty() && !less(merged.back(), c)) {
+      merged.back().weight += c.weight;
+      continue;
+    }
+    merged.push_back(c);
+  }
+  return merged;
 }
 
 double smallest_distance(const Model& model, const Eigen::MatrixX3d& x, const Candidates& candidates) {

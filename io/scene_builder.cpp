@@ -32,6 +32,9 @@ SurfaceMesh body_mesh(const BodyDescription& body, const std::string& file, cons
   mesh.V = mesh.V * body.scale.asDiagonal();
   if (const auto problem = closed_manifold_problem(mesh))
     throw SceneError(file, path + ".mesh", "body '" + body.name + "' needs a closed, manifold, outward-oriented surface: " + *problem);
+  if (const auto faces = find_self_intersection(mesh))
+    throw SceneError(file, path + ".mesh", "body '" + body.name + "' has a self-intersecting surface (faces " +
+                                               std::to_string(faces->first) + " and " + std::to_string(faces->second) + ")");
   return mesh;
 }
 

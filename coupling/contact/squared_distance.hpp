@@ -105,6 +105,7 @@ struct ResidualMinimum {
   Eigen::Matrix<double, M, 1> y;          ///< y*
 };
 
+/// Solves min_y ‖r(x, y)‖² through the normal equations (EᵀE) y = −Eᵀ r₀.
 template <int M>
 ResidualMinimum<M> minimize_residual(const AffineResidual<M>& res, const Vector12d& x) {
   ResidualMinimum<M> out;
@@ -133,6 +134,7 @@ inline Matrix12d kron_identity(const Eigen::Vector4d& c) {
   return H;
 }
 
+/// ∇²d² = g_xx − g_xy g_yy⁻¹ g_yx at the minimiser (implicit function theorem).
 template <int M>
 Matrix12d residual_hessian(const AffineResidual<M>& res, const Vector12d& x) {
   const ResidualMinimum<M> m = minimize_residual(res, x);

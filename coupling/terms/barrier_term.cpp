@@ -40,8 +40,9 @@ double BarrierTerm::value(const Configuration& c) const {
       tbb::blocked_range<size_t>(0, m_constraints.size()), 0.0,
       [&](const tbb::blocked_range<size_t>& r, double acc) {
         for (size_t k = r.begin(); k < r.end(); ++k)
-          acc += contact::barrier_potential(m_constraints[k].stencil, gather(c.x, m_constraints[k].vertices),
-                                            m_settings.dhat);
+          acc += m_constraints[k].weight * contact::barrier_potential(m_constraints[k].stencil,
+                                                                      gather(c.x, m_constraints[k].vertices),
+                                                                      m_settings.dhat);
         return acc;
       },
       std::plus<>());
@@ -50,8 +51,8 @@ double BarrierTerm::value(const Configuration& c) const {
 
 void BarrierTerm::add_gradient(const Configuration& c, Eigen::VectorXd& g) const {
   for (const ContactConstraint& k : m_constraints) {
-    const contact::Vector12d gx =
-        m_kappa * contact::barrier_potential_gradient(k.stencil, gather(c.x, k.vertices), m_settings.dhat);
+    const contact::Vector12d gx = m_kappa * k.weight *
+                                  contact::barrier_potential_gradient(k.stencil, gather(c.x, k.vertices), m_settings.dhat);
     StencilJacobian(m_model, k.vertices).scatter_gradient(gx, g);
   }
 }
@@ -60,7 +61,7 @@ void BarrierTerm::add_hessian(const Configuration& c, BlockHessian& H) const {
   // The 12×12 eigen-decompositions dominate: do them in parallel, scatter serially.
   std::vector<contact::Matrix12d> local(m_constraints.size());
   tbb::parallel_for(size_t(0), m_constraints.size(), [&](size_t k) {
-    local[k] = m_kappa * contact::barrier_potential_hessian(m_constraints[k].stencil,
+    local[k] = m_kappa * m_constraints[k].weight * contact::barrier_potential_hessian(m_constraints[k].stencil,
                                                             gather(c.x, m_constraints[k].vertices),
                                                             m_settings.dhat, true);
   });
@@ -145,8 +146,8 @@ void BarrierTerm::initialize_stiffness(const Configuration& c, const Eigen::Vect
 Eigen::MatrixX3d BarrierTerm::vertex_forces(const Configuration& c) const {
   Eigen::MatrixX3d f = Eigen::MatrixX3d::Zero(c.x.rows(), 3);
   for (const ContactConstraint& k : m_constraints) {
-    const contact::Vector12d gx =
-        m_kappa * contact::barrier_potential_gradient(k.stencil, gather(c.x, k.vertices), m_settings.dhat);
+    const contact::Vector12d gx = m_kappa * k.weight *
+                                  contact::barrier_potential_gradient(k.stencil, gather(c.x, k.vertices), m_settings.dhat);
     for (int i = 0; i < 4; ++i)
       if (k.vertices[i] >= 0) f.row(k.vertices[i]) -= gx.segment<3>(3 * i).transpose();
   }

@@ -15,7 +15,7 @@ void FrictionTerm::lag(const Configuration& c, const BarrierTerm& barrier) {
   m_vertices.clear();
   for (const ContactConstraint& k : barrier.constraints()) {
     m_stencils.push_back(contact::make_friction_stencil(k.stencil, gather(c.x, k.vertices),
-                                                        barrier.dhat(), barrier.kappa()));
+                                                        barrier.dhat(), barrier.kappa() * k.weight));
     m_vertices.push_back(k.vertices);
   }
 }

@@ -116,7 +116,7 @@ TEST(Barrier, IsZeroBeyondDhatAndC2AtDhat) {
   EXPECT_EQ(barrier(2 * s_hat, dhat), 0.0);
   EXPECT_EQ(barrier_first_derivative(2 * s_hat, dhat), 0.0);
   EXPECT_EQ(barrier_second_derivative(2 * s_hat, dhat), 0.0);
-  // b, b' → 0 and b'' → 0 as s → ŝ from below (b'' ~ 3(ŝ − s)/ŝ... → 0).
+  // b, b' → 0 and b'' → 0 as s → ŝ from below (b'' ≈ 6 (ŝ − s)/ŝ).
   const double s = s_hat * (1 - 1e-9);
   EXPECT_LT(std::abs(barrier(s, dhat)), 1e-30);
   EXPECT_LT(std::abs(barrier_first_derivative(s, dhat)), 1e-20);
