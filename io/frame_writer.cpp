@@ -21,34 +21,12 @@
 #include <system_error>
 
 #include "io/atomic_file.hpp"
+#include "io/vtk_error_catcher.hpp"
 
 namespace stiffsoft {
 
 namespace {
 
-/// Collects VTK's error messages so they become exceptions instead of text on stderr
-/// (vtkErrorMacro only prints when the object has no ErrorEvent observer).
-class VtkErrorCatcher : public vtkCommand {
- public:
-  static VtkErrorCatcher* New() { return new VtkErrorCatcher; }
-  void Execute(vtkObject*, unsigned long, void* call_data) override {
-    // The first error is the cause; later ones are the pipeline reporting the failure upwards.
-    if (failed || call_data == nullptr) {
-      failed = true;
-      return;
-    }
-    failed = true;
-    // VTK's text is "ERROR: In <source>, line N\n<class> (0x..): <what>\n"; keep <what>.
-    message = static_cast<const char*>(call_data);
-    const std::size_t what = message.find("): ");
-    if (what != std::string::npos) message.erase(0, what + 3);
-    while (!message.empty() && std::isspace(static_cast<unsigned char>(message.back()))) {
-      message.pop_back();
-    }
-  }
-  bool failed = false;
-  std::string message;
-};
 
 /// Shortest text that reads back to exactly the same double.
 std::string format_double(double v) {

@@ -11,6 +11,7 @@
 #include "coupling/contact/barrier_potential.hpp"
 #include "coupling/contact/edge_edge_mollifier.hpp"
 #include "coupling/contact/psd_projection.hpp"
+#include "contact_stencils.hpp"
 #include "finite_differences.hpp"
 
 namespace stiffsoft::contact {
@@ -25,53 +26,8 @@ using testing::relative_error;
 constexpr PrimitivePair kAllPairs[] = {PrimitivePair::VertexVertex, PrimitivePair::EdgeVertex,
                                        PrimitivePair::EdgeEdge, PrimitivePair::FaceVertex};
 
-Vector3d random_unit(std::mt19937& rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  return Vector3d(n(rng), n(rng), n(rng)).normalized();
-}
-
-/// A stencil of the given kind whose closest points are interior (so the pair's distance is
-/// the true one) at distance d along a random normal; primitives of size ~1, well shaped.
-Vector12d stencil_at_distance(PrimitivePair kind, double d, std::mt19937& rng) {
-  std::uniform_real_distribution<double> u(-1.0, 1.0), w(0.2, 0.8);
-  const Vector3d n = random_unit(rng);
-  Vector3d t = random_unit(rng);
-  t = (t - t.dot(n) * n).normalized();
-  const Vector3d b = n.cross(t);
-  const Vector3d c(u(rng), u(rng), u(rng));  // contact point
-  Vector12d x;
-  for (int i = 0; i < 12; ++i) x[i] = u(rng);  // garbage in the unused tail
-  switch (kind) {
-    case PrimitivePair::VertexVertex:
-      x << c + d * n, c, x.tail<6>();
-      break;
-    case PrimitivePair::EdgeVertex: {
-      const double s = w(rng), len = 0.5 + w(rng);
-      const Vector3d dir = (t + 0.5 * u(rng) * b).normalized();
-      x << c + d * n, c - s * len * dir, c + (1 - s) * len * dir, x.tail<3>();
-      break;
-    }
-    case PrimitivePair::FaceVertex: {
-      // equilateral-ish triangle around c in the plane (t, b)
-      const double r = 0.5 + 0.5 * w(rng), phi = u(rng);
-      Vector3d f[3];
-      for (int k = 0; k < 3; ++k) {
-        const double a = phi + 2.0 * M_PI * k / 3.0 + 0.3 * u(rng);
-        f[k] = c + r * (std::cos(a) * t + std::sin(a) * b);
-      }
-      x << c + d * n, f[0], f[1], f[2];
-      break;
-    }
-    case PrimitivePair::EdgeEdge: {
-      const double angle = 0.5 + 1.0 * w(rng);  // between the edges, away from parallel
-      const Vector3d da = t, db = std::cos(angle) * t + std::sin(angle) * b;
-      const double sa = w(rng), sb = w(rng);
-      x << c + d * n - sa * da, c + d * n + (1 - sa) * da, c - sb * db, c + (1 - sb) * db;
-      break;
-    }
-  }
-  return x;
-}
+using test_stencils::random_unit;
+using test_stencils::stencil_at_distance;
 
 /// Nearly parallel edges (angle θ with sin²θ < 1e-3, i.e. below the mollifier threshold)
 /// crossing at their interiors, at distance d: an EE stencil whose line distance is the true one.
