@@ -10,11 +10,17 @@ namespace stiffsoft {
 /// Direct sparse Cholesky H = L Lᵀ with CHOLMOD's supernodal method (through Eigen's wrapper).
 class CholmodSolver final : public LinearSolver {
  public:
+  /// A solver with nothing analysed yet: call analyze_pattern() first.
   CholmodSolver();
+  /// Frees CHOLMOD's factor.
   ~CholmodSolver() override;
+  /// See LinearSolver.
   void analyze_pattern(const Eigen::SparseMatrix<double>& upper) override;
+  /// See LinearSolver.
   bool factorize(const Eigen::SparseMatrix<double>& upper) override;
+  /// See LinearSolver.
   Eigen::VectorXd solve(const Eigen::VectorXd& b) override;
+  /// See LinearSolver.
   std::string name() const override { return "cholmod"; }
 
  private:

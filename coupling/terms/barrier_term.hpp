@@ -24,11 +24,15 @@ class BarrierTerm final : public EnergyTerm {
  public:
   /// `times` receives broad-phase and CCD seconds (may be null).
   BarrierTerm(const Model& model, const BarrierSettings& settings, PhaseTimes* times);
+  /// See EnergyTerm::name.
   const char* name() const override { return "barrier"; }
   /// Rebuilds candidates and active contacts at c.x.
   void update(const Configuration& c) override;
+  /// See EnergyTerm::value.
   double value(const Configuration& c) const override;
+  /// See EnergyTerm::add_gradient.
   void add_gradient(const Configuration& c, Eigen::VectorXd& g) const override;
+  /// See EnergyTerm::add_hessian.
   void add_hessian(const Configuration& c, BlockHessian& H) const override;
   /// Conservative CCD over the straight-line motion x → x + dx.
   double max_step(const Configuration& c, const Eigen::VectorXd& dq, const Eigen::MatrixX3d& dx) const override;

@@ -15,12 +15,16 @@ class FrictionTerm final : public EnergyTerm {
  public:
   /// μ ≥ 0 and ε_v h (m): the tangential displacement below which static friction is smoothed.
   FrictionTerm(const Model& model, double mu, double epsv_h);
+  /// See EnergyTerm::name.
   const char* name() const override { return "friction"; }
   /// Lags normal forces and bases from the barrier's active set at the start-of-step
   /// configuration c (whose surface x becomes xⁿ).
   void lag(const Configuration& c, const BarrierTerm& barrier);
+  /// See EnergyTerm::value.
   double value(const Configuration& c) const override;
+  /// See EnergyTerm::add_gradient.
   void add_gradient(const Configuration& c, Eigen::VectorXd& g) const override;
+  /// See EnergyTerm::add_hessian.
   void add_hessian(const Configuration& c, BlockHessian& H) const override;
   /// Friction force −∇_x D on every surface vertex, |V|×3 (energy units, as the barrier's).
   Eigen::MatrixX3d vertex_forces(const Configuration& c) const;

@@ -14,13 +14,17 @@ class InertiaTerm final : public EnergyTerm {
  public:
   /// The term for every body with DOFs; `kinematic_weight` is w_b of kinematic bodies.
   InertiaTerm(const Model& model, double kinematic_weight);
+  /// See EnergyTerm::name.
   const char* name() const override { return "inertia"; }
   /// Sets q̃ for the coming step.
   void set_target(const Eigen::VectorXd& q_tilde) { m_q_tilde = q_tilde; }
   /// The current q̃.
   const Eigen::VectorXd& target() const { return m_q_tilde; }
+  /// See EnergyTerm::value.
   double value(const Configuration& c) const override;
+  /// See EnergyTerm::add_gradient.
   void add_gradient(const Configuration& c, Eigen::VectorXd& g) const override;
+  /// See EnergyTerm::add_hessian.
   void add_hessian(const Configuration& c, BlockHessian& H) const override;
 
  private:

@@ -13,9 +13,13 @@ class OrthogonalityTerm final : public EnergyTerm {
  public:
   /// `scale` is β h² (s²).
   OrthogonalityTerm(const Model& model, double scale);
+  /// See EnergyTerm::name.
   const char* name() const override { return "orthogonality"; }
+  /// See EnergyTerm::value.
   double value(const Configuration& c) const override;
+  /// See EnergyTerm::add_gradient.
   void add_gradient(const Configuration& c, Eigen::VectorXd& g) const override;
+  /// See EnergyTerm::add_hessian.
   void add_hessian(const Configuration& c, BlockHessian& H) const override;
 
  private:
