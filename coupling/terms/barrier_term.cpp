@@ -36,7 +36,8 @@ void BarrierTerm::update(const Configuration& c) {
 }
 
 double BarrierTerm::value(const Configuration& c) const {
-  const double sum = tbb::parallel_reduce(
+  // Deterministic: the same run gives the same energies, bit for bit, whatever the schedule.
+  const double sum = tbb::parallel_deterministic_reduce(
       tbb::blocked_range<size_t>(0, m_constraints.size()), 0.0,
       [&](const tbb::blocked_range<size_t>& r, double acc) {
         for (size_t k = r.begin(); k < r.end(); ++k)
