@@ -67,30 +67,11 @@ StepStats Simulation::step() {
     terms.push_back(&*m_friction);
   }
 
-  // Initial guess: every dynamic body moved rigidly (p + h ṗ + β h² g, A turned by exp([ω]× h)),
-  // kinematic bodies onto their target, as far along the straight line from qⁿ as CCD allows.
-  // Newton from qⁿ would have to turn a spinning body through linearised rotations, each of
-  // which stretches it against the stiff orthogonality potential.
-  Eigen::VectorXd q_start = q_tilde;
-  for (const BodyModel& body : m_model.bodies) {
-    if (body.motion != Motion::Dynamic) continue;
-    const abd::Vector12d qb = m_q.segment<12>(body.dof), qd = m_qdot.segment<12>(body.dof);
-    const Eigen::Matrix3d W = abd::affine_matrix(qd) * abd::affine_matrix(qb).inverse();
-    const Eigen::Vector3d omega(0.5 * (W(2, 1) - W(1, 2)), 0.5 * (W(0, 2) - W(2, 0)), 0.5 * (W(1, 0) - W(0, 1)));
-    const abd::Vector12d turned = abd::rigid_motion(qb, Eigen::Vector3d::Zero(), omega, h);
-    q_start.segment<9>(body.dof + 3) = turned.tail<9>();
-  }
-  {
-    const Eigen::VectorXd dq = q_start - m_q;
-    const double alpha = m_barrier.max_step(c_n, dq, m_model.surface_step(dq));
-    q_start = m_q + alpha * dq;
-  }
-
   NewtonSettings ns;
   ns.tolerance = m_settings.tolerance;
   ns.h = h;
   ns.max_iterations = m_settings.max_iterations;
-  Eigen::VectorXd q_new = q_start;
+  Eigen::VectorXd q_new = initial_guess(q_tilde, c_n);
   StepStats stats;
   stats.newton = newton_minimize(m_model, terms, q_new, *m_solver, ns, m_times);
 
@@ -120,6 +101,18 @@ StepStats Simulation::step() {
   stats.times = m_times;
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
+}
+
+Eigen::VectorXd Simulation::initial_guess(const Eigen::VectorXd& q_tilde, const Configuration& c_n) const {
+  Eigen::VectorXd q_start = q_tilde;
+  for (const BodyModel& body : m_model.bodies) {
+    if (body.motion != Motion::Dynamic) continue;
+    const abd::Vector12d qb = m_q.segment<12>(body.dof);
+    const Eigen::Vector3d omega = abd::angular_velocity(qb, m_qdot.segment<12>(body.dof));
+    q_start.segment<9>(body.dof + 3) = abd::rigid_motion(qb, Eigen::Vector3d::Zero(), omega, m_settings.h).tail<9>();
+  }
+  const Eigen::VectorXd dq = q_start - m_q;
+  return m_q + m_barrier.max_step(c_n, dq, m_model.surface_step(dq)) * dq;
 }
 
 Eigen::MatrixX3d Simulation::contact_forces() const {

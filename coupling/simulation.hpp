@@ -75,6 +75,12 @@ class Simulation {
   Eigen::MatrixX3d friction_forces() const;
 
  private:
+  /// Newton's starting point: every dynamic body moved rigidly (p from q̃, A turned by
+  /// exp([ω]× h)), kinematic bodies onto their target (q̃), as far along the straight line from
+  /// qⁿ as CCD allows. Starting at qⁿ would make Newton turn a spinning body through linearised
+  /// rotations, each of which stretches it against the stiff orthogonality potential.
+  Eigen::VectorXd initial_guess(const Eigen::VectorXd& q_tilde, const Configuration& c_n) const;
+
   Model m_model;
   SimulationSettings m_settings;
   std::unique_ptr<LinearSolver> m_solver;

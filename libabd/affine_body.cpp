@@ -36,6 +36,11 @@ Vector12d rigid_velocity(const Vector12d& q, const Eigen::Vector3d& v,
   return make_q(v, cross_matrix(omega) * affine_matrix(q));
 }
 
+Eigen::Vector3d angular_velocity(const Vector12d& q, const Vector12d& qdot) {
+  const Eigen::Matrix3d W = affine_matrix(qdot) * affine_matrix(q).inverse();
+  return 0.5 * Eigen::Vector3d(W(2, 1) - W(1, 2), W(0, 2) - W(2, 0), W(1, 0) - W(0, 1));
+}
+
 Vector12d rigid_motion(const Vector12d& q, const Eigen::Vector3d& v, const Eigen::Vector3d& omega,
                        double t) {
   const double angle = omega.norm() * t;

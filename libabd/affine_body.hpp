@@ -38,6 +38,10 @@ inline Eigen::Vector3d world_point(const Vector12d& q, const Eigen::Vector3d& x_
 /// of a body whose configuration is q: ṗ = v, Ȧ = [ω]× A.
 Vector12d rigid_velocity(const Vector12d& q, const Eigen::Vector3d& v, const Eigen::Vector3d& omega);
 
+/// The world angular velocity ω of the rigid part of q̇ at q: the axial vector of the skew part
+/// of Ȧ A⁻¹ (the inverse of rigid_velocity for rigid motions), rad/s.
+Eigen::Vector3d angular_velocity(const Vector12d& q, const Vector12d& qdot);
+
 /// The configuration reached from q after time t of the rigid motion (v, ω): p + v t and
 /// exp([ω]× t) A (exact rotation, Rodrigues).
 Vector12d rigid_motion(const Vector12d& q, const Eigen::Vector3d& v, const Eigen::Vector3d& omega,

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <random>
 
 using namespace stiffsoft::abd;
@@ -38,4 +39,11 @@ TEST(MassMatrix, RigidVelocityGivesRigidKineticEnergy) {
   const Vector12d qdot = rigid_velocity(q, v, w);
   const double expected = 0.5 * mp.mass * v.squaredNorm() + 0.5 * w.dot(inertia_tensor(mp) * w);
   EXPECT_NEAR(0.5 * qdot.dot(mass_matrix(mp) * qdot), expected, 1e-12 * expected);
+}
+
+TEST(AffineBody, AngularVelocityInvertsRigidVelocity) {
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Vector12d q = make_q(Eigen::Vector3d(0.1, -2, 3), R);
+  const Eigen::Vector3d w(0.3, -1.2, 2.5);
+  EXPECT_LT((angular_velocity(q, rigid_velocity(q, Eigen::Vector3d(1, 0, 0), w)) - w).norm(), 1e-12);
 }
