@@ -77,7 +77,10 @@ double BarrierTerm::max_step(const Configuration& c, const Eigen::VectorXd&, con
   const Candidates candidates = broad_phase(m_model, c.x, x1, 0.0);
   const CollisionMesh& mesh = m_model.mesh;
   const auto row = [](const Eigen::MatrixX3d& m, int i) -> Eigen::Vector3d { return m.row(i).transpose(); };
-  const double alpha_vf = tbb::parallel_reduce(
+  // Each chunk bounds its queries by the smallest time found so far (t_max = α), and the time
+  // ACCD returns depends on that bound; a deterministic reduction splits the work the same
+  // way whatever the thread schedule, so the step bound, and the run, are reproducible.
+  const double alpha_vf = tbb::parallel_deterministic_reduce(
       tbb::blocked_range<size_t>(0, candidates.vertex_face.size()), 1.0,
       [&](const tbb::blocked_range<size_t>& r, double alpha) {
         ccd::CcdSettings s;
@@ -92,7 +95,7 @@ double BarrierTerm::max_step(const Configuration& c, const Eigen::VectorXd&, con
         return alpha;
       },
       [](double a, double b) { return std::min(a, b); });
-  const double alpha_ee = tbb::parallel_reduce(
+  const double alpha_ee = tbb::parallel_deterministic_reduce(
       tbb::blocked_range<size_t>(0, candidates.edge_edge.size()), alpha_vf,
       [&](const tbb::blocked_range<size_t>& r, double alpha) {
         ccd::CcdSettings s;
