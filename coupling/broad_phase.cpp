@@ -78,6 +78,11 @@ void sweep(const std::vector<Keyed>& A, const std::vector<Box>& boxes_a, const s
   }
 }
 
+/// True when the body carries DOFs (an affine body that is not fixed, or a soft body).
+bool moves(const BodyModel& body) {
+  return body.dof >= 0 || body.representation == Representation::Soft;
+}
+
 }  // namespace
 
 Candidates broad_phase(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
@@ -103,10 +108,12 @@ Candidates broad_phase(const Model& model, const Eigen::MatrixX3d& x0, const Eig
     const int a = order[i];
     for (int j = i + 1; j < nb && body_box[order[j]].lo[0] <= body_box[a].hi[0]; ++j) {
       const int b = order[j];
-      if (model.bodies[a].dof < 0 && model.bodies[b].dof < 0) continue;
+      if (!moves(model.bodies[a]) && !moves(model.bodies[b])) continue;
       if (body_box[a].overlaps(body_box[b])) body_pairs.push_back({std::min(a, b), std::max(a, b)});
     }
   }
+  for (int b = 0; b < nb; ++b)
+    if (model.bodies[b].self_contact()) body_pairs.push_back({b, b});
 
   tbb::enumerable_thread_specific<Candidates> local;
   tbb::parallel_for(size_t(0), body_pairs.size(), [&](size_t k) {
@@ -123,6 +130,18 @@ Candidates broad_phase(const Model& model, const Eigen::MatrixX3d& x0, const Eig
     const auto fb = inside(boxes.face, B.face_begin, B.face_end, region, axis);
     const auto ea = inside(boxes.edge, A.edge_begin, A.edge_end, region, axis);
     const auto eb = inside(boxes.edge, B.edge_begin, B.edge_end, region, axis);
+    if (a == b) {
+      // Self-contact of a soft body: every pair once, none that shares a vertex.
+      sweep(va, boxes.vertex, fa, boxes.face, [&](int v, int f) {
+        if ((mesh.F.row(f).array() != v).all()) out.vertex_face.push_back({v, f});
+      });
+      sweep(ea, boxes.edge, ea, boxes.edge, [&](int e, int g) {
+        if (e < g && mesh.E(e, 0) != mesh.E(g, 0) && mesh.E(e, 0) != mesh.E(g, 1) &&
+            mesh.E(e, 1) != mesh.E(g, 0) && mesh.E(e, 1) != mesh.E(g, 1))
+          out.edge_edge.push_back({e, g});
+      });
+      return;
+    }
     sweep(va, boxes.vertex, fb, boxes.face, [&](int v, int f) { out.vertex_face.push_back({v, f}); });
     sweep(vb, boxes.vertex, fa, boxes.face, [&](int v, int f) { out.vertex_face.push_back({v, f}); });
     sweep(ea, boxes.edge, eb, boxes.edge,

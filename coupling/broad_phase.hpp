@@ -10,8 +10,8 @@
 
 namespace stiffsoft {
 
-/// Primitive pairs whose boxes overlap, always between two different bodies, at least one
-/// of which carries DOFs.
+/// Primitive pairs whose boxes overlap: between two different bodies, at least one of which
+/// carries DOFs, or inside one soft body (self-contact) when they share no vertex.
 struct Candidates {
   std::vector<std::array<int, 2>> vertex_face;  ///< (vertex, face)
   std::vector<std::array<int, 2>> edge_edge;    ///< (edge, edge), first < second

@@ -22,7 +22,7 @@ void update_all(const std::vector<EnergyTerm*>& terms, const Configuration& c) {
 bool newton_direction(const Model& model, const std::vector<EnergyTerm*>& terms, const Configuration& c,
                       const Eigen::VectorXd& g, LinearSolver& solver, std::vector<std::int64_t>& pattern,
                       PhaseTimes& times, Eigen::VectorXd& p) {
-  BlockHessian H(model.num_dofs / 12);
+  BlockHessian H(model.blocks);
   {
     ScopedTimer timer(times.assembly);
     for (const EnergyTerm* t : terms) t->add_hessian(c, H);

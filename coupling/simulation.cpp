@@ -39,7 +39,10 @@ Simulation::Simulation(Model model, const SimulationSettings& settings)
   m_qdot_prev = m_qdot;
   m_gravity_q = Eigen::VectorXd::Zero(m_model.num_dofs);
   for (const BodyModel& body : m_model.bodies)
-    if (body.motion == Motion::Dynamic) m_gravity_q.segment<3>(body.dof) = settings.gravity;
+    if (body.dof >= 0 && body.motion == Motion::Dynamic) m_gravity_q.segment<3>(body.dof) = settings.gravity;
+  const SoftNodes& nodes = m_model.nodes;
+  for (int i = 0; i < nodes.size(); ++i)
+    if (nodes.motion[i] == Motion::Dynamic) m_gravity_q.segment<3>(nodes.dof[i]) = settings.gravity;
 }
 
 StepStats Simulation::step() {
@@ -49,8 +52,12 @@ StepStats Simulation::step() {
   Eigen::VectorXd q_tilde =
       predicted_q(m_settings.integrator, h, m_q, m_qdot, m_q_prev, m_qdot_prev, m_gravity_q);
   for (const BodyModel& body : m_model.bodies)
-    if (body.motion == Motion::Kinematic)
+    if (body.dof >= 0 && body.motion == Motion::Kinematic)
       q_tilde.segment<12>(body.dof) = abd::rigid_motion(body.q0, body.v0, body.w0, m_time + h);
+  const SoftNodes& nodes = m_model.nodes;
+  for (int i = 0; i < nodes.size(); ++i)
+    if (nodes.motion[i] == Motion::Kinematic)
+      q_tilde.segment<3>(nodes.dof[i]) = (nodes.X.row(i) + (m_time + h) * nodes.velocity.row(i)).transpose();
   m_inertia.set_target(q_tilde);
 
   // Lag friction and balance κ at the start-of-step configuration.
@@ -89,8 +96,15 @@ StepStats Simulation::step() {
   stats.contacts = int(m_barrier.constraints().size());
   stats.smallest_distance = m_barrier.min_active_distance({m_q, x});
   stats.kappa = m_barrier.kappa();
+  for (int i = 0; i < nodes.size(); ++i) {
+    if (nodes.motion[i] != Motion::Dynamic) continue;
+    const Eigen::Vector3d v = m_qdot.segment<3>(nodes.dof[i]);
+    stats.kinetic_energy += 0.5 * nodes.mass[i] * v.squaredNorm();
+    stats.potential_energy -= nodes.mass[i] * m_settings.gravity.dot(m_q.segment<3>(nodes.dof[i]));
+    stats.linear_momentum += nodes.mass[i] * v;
+  }
   for (const BodyModel& body : m_model.bodies) {
-    if (body.motion != Motion::Dynamic) continue;
+    if (body.dof < 0 || body.motion != Motion::Dynamic) continue;
     const abd::Vector12d qd = m_qdot.segment<12>(body.dof);
     stats.kinetic_energy += 0.5 * qd.dot(body.M * qd);
     stats.potential_energy -= body.mass * m_settings.gravity.dot(m_q.segment<3>(body.dof));
@@ -106,7 +120,7 @@ StepStats Simulation::step() {
 Eigen::VectorXd Simulation::initial_guess(const Eigen::VectorXd& q_tilde, const Configuration& c_n) const {
   Eigen::VectorXd q_start = q_tilde;
   for (const BodyModel& body : m_model.bodies) {
-    if (body.motion != Motion::Dynamic) continue;
+    if (body.dof < 0 || body.motion != Motion::Dynamic) continue;
     const abd::Vector12d qb = m_q.segment<12>(body.dof);
     const Eigen::Vector3d omega = abd::angular_velocity(qb, m_qdot.segment<12>(body.dof));
     q_start.segment<9>(body.dof + 3) = abd::rigid_motion(qb, Eigen::Vector3d::Zero(), omega, m_settings.h).tail<9>();

@@ -1,7 +1,8 @@
 #pragma once
-/// @file How a contact stencil's surface points depend on body DOFs: x_stencil = Σ_s J_s q_s
-/// over the (at most two) bodies of the stencil, with J_s stacking J(x̄) of the vertices of
-/// body s. Fixed bodies carry no DOFs and drop out.
+/// @file How a contact stencil's surface points depend on the DOFs: x_stencil = Σ_s J_s q_s
+/// over the DOF blocks of its vertices (at most four): J_s stacks J(x̄) (3×12) for the vertices
+/// of an affine body and the identity (3×3) for a soft node. Fixed bodies and nodes carry no
+/// DOFs and drop out.
 
 #include <Eigen/Core>
 #include <array>
@@ -11,11 +12,14 @@
 
 namespace stiffsoft {
 
-/// The linear map from the DOFs of a stencil's bodies to its packed vertex positions.
+/// The linear map from the DOF blocks of a stencil's vertices to its packed vertex positions.
 struct StencilJacobian {
-  std::array<int, 2> block{-1, -1};    ///< DOF block (dof / 12) of each body slot, −1 if none
-  int slots = 0;                       ///< number of body slots with DOFs
-  Eigen::Matrix<double, 12, 24> J = Eigen::Matrix<double, 12, 24>::Zero();  ///< ∂x_stencil/∂(q_slot0, q_slot1)
+  /// ∂x_stencil/∂q_s of one slot: 12 × (12 or 3).
+  using SlotMatrix = Eigen::Matrix<double, 12, Eigen::Dynamic, Eigen::ColMajor, 12, 12>;
+  std::array<int, 4> block{-1, -1, -1, -1};  ///< DOF block of each slot
+  std::array<int, 4> offset{-1, -1, -1, -1}; ///< first DOF of each slot in q
+  std::array<SlotMatrix, 4> J;               ///< ∂x_stencil/∂q_slot
+  int slots = 0;                             ///< number of slots with DOFs
 
   /// Builds the map for the given stencil vertices (−1 entries unused).
   StencilJacobian(const Model& model, const std::array<int, 4>& vertices);

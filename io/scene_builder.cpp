@@ -74,8 +74,8 @@ Model build_model(const SceneDescription& scene, const std::filesystem::path& fi
                   : desc.kind == BodyKind::Kinematic ? Motion::Kinematic
                                                      : Motion::Dynamic;
     if (body.motion != Motion::Fixed) {
-      body.dof = model.num_dofs;
-      model.num_dofs += 12;
+      body.block = model.add_block(12);
+      body.dof = model.blocks[body.block].offset;
     }
     body.M = abd::mass_matrix(mp);
     body.mass = mp.mass;
@@ -96,6 +96,7 @@ Model build_model(const SceneDescription& scene, const std::filesystem::path& fi
     for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) {
       x_bar_rows.push_back(mesh.V.row(v) - c.transpose());
       cm.vertex_body.push_back(int(i));
+      cm.vertex_node.push_back(-1);
     }
     for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
       faces.push_back(mesh.F.row(f).array() + vertex_offset);

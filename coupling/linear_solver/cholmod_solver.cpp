@@ -1,12 +1,21 @@
 #include "coupling/linear_solver/cholmod_solver.hpp"
 
 #include <Eigen/CholmodSupport>
-#include <stdexcept>
+#include <chrono>
+#include <limits>
 
 namespace stiffsoft {
 
+namespace {
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+}  // namespace
+
 struct CholmodSolver::Impl {
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper> llt;
+  Eigen::SparseMatrix<double> upper;  // the factorised H, for the residual
+  bool factorized = false;
 };
 
 CholmodSolver::CholmodSolver() : m_impl(std::make_unique<Impl>()) {}
@@ -17,15 +26,42 @@ void CholmodSolver::analyze_pattern(const Eigen::SparseMatrix<double>& upper) {
 }
 
 bool CholmodSolver::factorize(const Eigen::SparseMatrix<double>& upper) {
+  const auto start = std::chrono::steady_clock::now();
+  m_report = LinearSolveReport{};
   m_impl->llt.factorize(upper);
-  return m_impl->llt.info() == Eigen::Success;
+  m_impl->factorized = m_impl->llt.info() == Eigen::Success;
+  if (m_impl->factorized) {
+    m_impl->upper = upper;
+  } else {
+    m_report.status = LinearSolveStatus::Indefinite;
+    m_report.reason = "CHOLMOD: the matrix is not positive definite";
+  }
+  m_report.setup_seconds = seconds_since(start);
+  return m_impl->factorized;
 }
 
-Eigen::VectorXd CholmodSolver::solve(const Eigen::VectorXd& b) { return m_impl->llt.solve(b); }
-
-std::unique_ptr<LinearSolver> make_linear_solver(const std::string& name) {
-  if (name == "cholmod") return std::make_unique<CholmodSolver>();
-  throw std::invalid_argument("unknown linear solver '" + name + "' (available: cholmod)");
+Eigen::VectorXd CholmodSolver::solve(const Eigen::VectorXd& b) {
+  const auto start = std::chrono::steady_clock::now();
+  const int n = int(b.size());
+  if (!m_impl->factorized) {
+    m_report.status = LinearSolveStatus::Indefinite;
+    return Eigen::VectorXd::Constant(n, std::numeric_limits<double>::quiet_NaN());
+  }
+  Eigen::VectorXd p = m_impl->llt.solve(b);
+  const double b_norm = b.norm();
+  const Eigen::VectorXd r = b - m_impl->upper.selfadjointView<Eigen::Upper>() * p;
+  m_report.relative_residual = b_norm > 0 ? r.norm() / b_norm : r.norm();
+  m_report.iterations = 0;
+  if (p.allFinite() && m_impl->llt.info() == Eigen::Success) {
+    m_report.status = LinearSolveStatus::Converged;
+    m_report.reason = "CHOLMOD: solved";
+  } else {
+    m_report.status = LinearSolveStatus::Diverged;
+    m_report.reason = "CHOLMOD: the solution is not finite";
+    p.setConstant(std::numeric_limits<double>::quiet_NaN());
+  }
+  m_report.solve_seconds = seconds_since(start);
+  return p;
 }
 
 }  // namespace stiffsoft

@@ -8,11 +8,12 @@
 
 namespace stiffsoft {
 
-/// ½ Σ_b w_b (q_b − q̃_b)ᵀ M_b (q_b − q̃_b). w_b = 1 for dynamic bodies; kinematic bodies use a
-/// large w_b, which pulls them onto their prescribed configuration q̃_b.
+/// ½ Σ_b w_b (q_b − q̃_b)ᵀ M_b (q_b − q̃_b) over the DOF blocks: M_b is an affine body's 12×12
+/// mass matrix or a soft node's lumped mass m_i I₃. w_b = 1 for dynamic bodies and nodes;
+/// kinematic ones use a large w_b, which pulls them onto their prescribed configuration q̃_b.
 class InertiaTerm final : public EnergyTerm {
  public:
-  /// The term for every body with DOFs; `kinematic_weight` is w_b of kinematic bodies.
+  /// The term for every DOF block; `kinematic_weight` is w_b of kinematic bodies and nodes.
   InertiaTerm(const Model& model, double kinematic_weight);
   /// See EnergyTerm::name.
   const char* name() const override { return "inertia"; }
@@ -28,7 +29,16 @@ class InertiaTerm final : public EnergyTerm {
   void add_hessian(const Configuration& c, BlockHessian& H) const override;
 
  private:
-  std::vector<abd::Matrix12d> m_M;  // w_b M_b per DOF block
+  struct AffineBlock {
+    int block, dof;
+    abd::Matrix12d M;  // w_b M_b
+  };
+  struct NodeBlock {
+    int block, dof;
+    double m;  // w_i m_i
+  };
+  std::vector<AffineBlock> m_affine;
+  std::vector<NodeBlock> m_nodes;
   Eigen::VectorXd m_q_tilde;
 };
 

@@ -21,10 +21,13 @@ class OrthogonalityTerm final : public EnergyTerm {
   void add_gradient(const Configuration& c, Eigen::VectorXd& g) const override;
   /// See EnergyTerm::add_hessian.
   void add_hessian(const Configuration& c, BlockHessian& H) const override;
+  /// True when no dynamic affine body exists (the term can be left out).
+  bool empty() const { return m_bodies.empty(); }
 
  private:
   struct Body {
     int block;
+    int dof;
     double kappa_volume;  // β h² κ ν
   };
   std::vector<Body> m_bodies;
