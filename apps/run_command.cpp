@@ -22,33 +22,73 @@ namespace {
 const std::vector<std::string> kStatsColumns{
     "step", "time", "newton_iterations", "line_search_steps", "smallest_ccd_step", "converged",
     "contacts", "smallest_distance", "kinetic_energy", "potential_energy", "momentum_x", "momentum_y",
-    "momentum_z", "orthogonality_error", "kappa", "seconds_broad_phase", "seconds_ccd",
+    "momentum_z", "orthogonality_error", "elastic_energy", "inverted_tets", "kappa", "seconds_broad_phase", "seconds_ccd",
     "seconds_assembly", "seconds_solve", "seconds_step"};
 
 std::vector<double> stats_row(const StepStats& s) {
   return {double(s.step), s.time, double(s.newton.iterations), double(s.newton.line_search_steps),
           s.newton.smallest_ccd_step, s.newton.converged ? 1.0 : 0.0, double(s.contacts),
           s.smallest_distance, s.kinetic_energy, s.potential_energy, s.linear_momentum.x(),
-          s.linear_momentum.y(), s.linear_momentum.z(), s.orthogonality_error, s.kappa,
+          s.linear_momentum.y(), s.linear_momentum.z(), s.orthogonality_error, s.elastic_energy,
+          double(s.inverted_tets), s.kappa,
           s.times.broad_phase, s.times.ccd, s.times.assembly, s.times.solve, s.seconds};
+}
+
+/// A soft body's frame: all its nodes as points, tets then surface triangles as cells; surface
+/// forces land on their nodes; triangles carry their tetrahedron's von Mises stress.
+BodyFrame soft_frame(const Simulation& sim, const BodyModel& body, const Eigen::MatrixX3d& fc,
+                     const Eigen::MatrixX3d& ff, const Eigen::MatrixX3d& nodes_x, const Eigen::MatrixX3d& nodes_v,
+                     const Eigen::VectorXd& von_mises) {
+  const Model& model = sim.model();
+  const int n = body.node_end - body.node_begin, nt = body.tet_end - body.tet_begin,
+            nf = body.face_end - body.face_begin;
+  BodyFrame f;
+  f.x = nodes_x.middleRows(body.node_begin, n);
+  f.velocity = nodes_v.middleRows(body.node_begin, n);
+  f.displacement = f.x - model.nodes.X.middleRows(body.node_begin, n);
+  f.T = model.nodes.T.middleRows(body.tet_begin, nt).array() - body.node_begin;
+  f.F.resize(nf, 3);
+  f.von_mises.resize(nt + nf);
+  f.von_mises.head(nt) = von_mises.segment(body.tet_begin, nt);
+  for (int k = 0; k < nf; ++k) {
+    const int face = body.face_begin + k;
+    for (int j = 0; j < 3; ++j) f.F(k, j) = model.mesh.vertex_node[model.mesh.F(face, j)] - body.node_begin;
+    f.von_mises[nt + k] = von_mises[model.mesh.face_tet[face]];
+  }
+  f.contact_force = Eigen::MatrixX3d::Zero(n, 3);
+  f.friction_force = Eigen::MatrixX3d::Zero(n, 3);
+  for (int v = body.vertex_begin; v < body.vertex_end; ++v) {
+    const int node = model.mesh.vertex_node[v] - body.node_begin;
+    f.contact_force.row(node) = fc.row(v);
+    f.friction_force.row(node) = ff.row(v);
+  }
+  return f;
 }
 
 std::vector<BodyFrame> frame_of(const Simulation& sim, const Eigen::MatrixX3d& x0) {
   const Model& model = sim.model();
   const Eigen::MatrixX3d x = sim.surface(), v = sim.surface_velocity(), fc = sim.contact_forces(),
                          ff = sim.friction_forces();
+  const bool soft = model.has_soft_bodies();
+  const Eigen::MatrixX3d nodes_x = soft ? sim.node_positions() : Eigen::MatrixX3d();
+  const Eigen::MatrixX3d nodes_v = soft ? sim.node_velocities() : Eigen::MatrixX3d();
+  const Eigen::VectorXd von_mises = soft ? sim.von_mises() : Eigen::VectorXd();
   std::vector<BodyFrame> frames;
   for (const BodyModel& body : model.bodies) {
-    const int n = body.vertex_end - body.vertex_begin, nf = body.face_end - body.face_begin;
     BodyFrame f;
+    if (body.representation == Representation::Soft) {
+      f = soft_frame(sim, body, fc, ff, nodes_x, nodes_v, von_mises);
+    } else {
+      const int n = body.vertex_end - body.vertex_begin, nf = body.face_end - body.face_begin;
+      f.x = x.middleRows(body.vertex_begin, n);
+      f.F = model.mesh.F.middleRows(body.face_begin, nf).array() - body.vertex_begin;
+      f.velocity = v.middleRows(body.vertex_begin, n);
+      f.displacement = f.x - x0.middleRows(body.vertex_begin, n);
+      f.contact_force = fc.middleRows(body.vertex_begin, n);
+      f.friction_force = ff.middleRows(body.vertex_begin, n);
+    }
     f.name = body.name;
-    f.model = motion_name(body.motion);
-    f.x = x.middleRows(body.vertex_begin, n);
-    f.F = model.mesh.F.middleRows(body.face_begin, nf).array() - body.vertex_begin;
-    f.velocity = v.middleRows(body.vertex_begin, n);
-    f.displacement = f.x - x0.middleRows(body.vertex_begin, n);
-    f.contact_force = fc.middleRows(body.vertex_begin, n);
-    f.friction_force = ff.middleRows(body.vertex_begin, n);
+    f.model = motion_name(body);
     frames.push_back(std::move(f));
   }
   return frames;

@@ -85,6 +85,7 @@ struct CollisionMesh {
   Eigen::MatrixX3i F;            ///< triangles, global vertex indices, |F|×3
   Eigen::MatrixX2i E;            ///< edges, global vertex indices, |E|×2
   std::vector<int> face_body;    ///< body of each triangle
+  std::vector<int> face_tet;     ///< soft: tetrahedron (row of Model::nodes.T) of each boundary triangle; −1 for affine
   std::vector<int> edge_body;    ///< body of each edge
 };
 

@@ -15,9 +15,16 @@ BarrierSettings barrier_settings(const Model& model, const SimulationSettings& s
   b.bbox_diagonal = model.bounding_box_diagonal();
   double mass = 0;
   int n = 0;
+  // Average over what carries DOFs: dynamic affine bodies and dynamic soft nodes (IPC
+  // averages over nodes; an affine body is one node of mass m).
   for (const BodyModel& body : model.bodies)
-    if (body.motion == Motion::Dynamic) {
+    if (body.dof >= 0 && body.motion == Motion::Dynamic) {
       mass += body.mass;
+      ++n;
+    }
+  for (int i = 0; i < model.nodes.size(); ++i)
+    if (model.nodes.motion[i] == Motion::Dynamic) {
+      mass += model.nodes.mass[i];
       ++n;
     }
   b.average_mass = n ? mass / n : 1.0;
@@ -31,6 +38,7 @@ Simulation::Simulation(Model model, const SimulationSettings& settings)
       m_solver(make_linear_solver(settings.linear_solver)),
       m_inertia(m_model, settings.kinematic_weight),
       m_orthogonality(m_model, integrator_beta(settings.integrator) * settings.h * settings.h),
+      m_elasticity(m_model, integrator_beta(settings.integrator) * settings.h * settings.h),
       m_barrier(m_model, barrier_settings(m_model, settings), &m_times) {
   if (settings.mu > 0) m_friction.emplace(m_model, settings.mu, settings.eps_v * settings.h);
   m_q = m_model.initial_q();
@@ -64,11 +72,15 @@ StepStats Simulation::step() {
   const Eigen::MatrixX3d x_n = m_model.surface(m_q);
   const Configuration c_n{m_q, x_n};
   m_barrier.update(c_n);
+  // Only the terms the scene needs: no orthogonality without affine bodies, no elasticity
+  // without soft ones, no friction with μ = 0.
+  std::vector<EnergyTerm*> terms{&m_inertia};
+  if (!m_orthogonality.empty()) terms.push_back(&m_orthogonality);
+  if (!m_elasticity.empty()) terms.push_back(&m_elasticity);
   Eigen::VectorXd grad_other = Eigen::VectorXd::Zero(m_q.size());
-  m_inertia.add_gradient(c_n, grad_other);
-  m_orthogonality.add_gradient(c_n, grad_other);
+  for (const EnergyTerm* t : terms) t->add_gradient(c_n, grad_other);
   m_barrier.initialize_stiffness(c_n, grad_other);
-  std::vector<EnergyTerm*> terms{&m_inertia, &m_orthogonality, &m_barrier};
+  terms.push_back(&m_barrier);
   if (m_friction) {
     m_friction->lag(c_n, m_barrier);
     terms.push_back(&*m_friction);
@@ -112,6 +124,11 @@ StepStats Simulation::step() {
     stats.orthogonality_error =
         std::max(stats.orthogonality_error, abd::orthogonality_error(m_q.segment<12>(body.dof)));
   }
+  if (!m_elasticity.empty()) {
+    stats.elastic_energy = m_elasticity.value({m_q, x}) /
+                           (integrator_beta(m_settings.integrator) * m_settings.h * m_settings.h);
+    stats.inverted_tets = m_elasticity.inverted_count(m_q);
+  }
   stats.times = m_times;
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
@@ -141,5 +158,19 @@ Eigen::MatrixX3d Simulation::friction_forces() const {
   const double scale = integrator_beta(m_settings.integrator) * m_settings.h * m_settings.h;
   return m_friction->vertex_forces({m_q, x}) / scale;
 }
+
+}  // namespace stiffsoft
+
+namespace stiffsoft {
+
+Eigen::MatrixX3d Simulation::node_velocities() const {
+  const SoftNodes& nodes = m_model.nodes;
+  Eigen::MatrixX3d v = Eigen::MatrixX3d::Zero(nodes.size(), 3);
+  for (int i = 0; i < nodes.size(); ++i)
+    if (nodes.dof[i] >= 0) v.row(i) = m_qdot.segment<3>(nodes.dof[i]).transpose();
+  return v;
+}
+
+Eigen::VectorXd Simulation::von_mises() const { return m_elasticity.von_mises(m_q); }
 
 }  // namespace stiffsoft

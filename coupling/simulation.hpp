@@ -10,6 +10,7 @@
 #include "coupling/model.hpp"
 #include "coupling/newton.hpp"
 #include "coupling/terms/barrier_term.hpp"
+#include "coupling/terms/elasticity_term.hpp"
 #include "coupling/terms/friction_term.hpp"
 #include "coupling/terms/inertia_term.hpp"
 #include "coupling/terms/orthogonality_term.hpp"
@@ -42,7 +43,9 @@ struct StepStats {
   double kinetic_energy = 0;     ///< ½ q̇ᵀ M q̇ of dynamic bodies (J)
   double potential_energy = 0;   ///< gravitational, −Σ m g·p (J)
   Eigen::Vector3d linear_momentum = Eigen::Vector3d::Zero();  ///< Σ m ṗ of dynamic bodies (kg·m/s)
-  double orthogonality_error = 0;  ///< max_b ‖A_b A_bᵀ − I‖_F
+  double orthogonality_error = 0;  ///< max_b ‖A_b A_bᵀ − I‖_F over dynamic affine bodies
+  double elastic_energy = 0;     ///< Σ_e V_e ψ(F_e) of the soft bodies (J)
+  int inverted_tets = 0;         ///< soft tetrahedra with det F ≤ 0 at the end of the step
   double kappa = 0;              ///< barrier stiffness at the end of the step
   PhaseTimes times;              ///< seconds per phase
   double seconds = 0;            ///< wall time of the whole step (s)
@@ -73,6 +76,12 @@ class Simulation {
   Eigen::MatrixX3d contact_forces() const;
   /// Friction force on each surface vertex over the last step, |V|×3 (N); zero without friction.
   Eigen::MatrixX3d friction_forces() const;
+  /// Positions of the soft bodies' nodes, |N|×3 (m).
+  Eigen::MatrixX3d node_positions() const { return m_model.node_positions(m_q); }
+  /// Velocities of the soft bodies' nodes, |N|×3 (m/s): zero for fixed nodes.
+  Eigen::MatrixX3d node_velocities() const;
+  /// Von Mises stress of every soft tetrahedron (Model::nodes.T order), Pa; empty without soft bodies.
+  Eigen::VectorXd von_mises() const;
 
  private:
   /// Newton's starting point: every dynamic body moved rigidly (p from q̃, A turned by
@@ -87,6 +96,7 @@ class Simulation {
   PhaseTimes m_times;
   InertiaTerm m_inertia;
   OrthogonalityTerm m_orthogonality;
+  ElasticityTerm m_elasticity;
   BarrierTerm m_barrier;
   std::optional<FrictionTerm> m_friction;
   Eigen::VectorXd m_q, m_qdot, m_q_prev, m_qdot_prev, m_gravity_q;

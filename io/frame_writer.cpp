@@ -1,6 +1,7 @@
 #include "io/frame_writer.hpp"
 
 #include <vtkCellArray.h>
+#include <vtkCellData.h>
 #include <vtkCellType.h>
 #include <vtkCommand.h>
 #include <vtkDoubleArray.h>
@@ -11,6 +12,7 @@
 #include <vtkPoints.h>
 #include <vtkSmartPointer.h>
 #include <vtkStringArray.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
@@ -75,6 +77,15 @@ void check_shapes(const BodyFrame& body) {
     throw std::invalid_argument("body '" + body.name + "': face indices must lie in [0, " +
                                 std::to_string(n) + ")");
   }
+  if (body.T.size() != 0 && (body.T.minCoeff() < 0 || body.T.maxCoeff() >= n)) {
+    throw std::invalid_argument("body '" + body.name + "': tetrahedron indices must lie in [0, " +
+                                std::to_string(n) + ")");
+  }
+  const Eigen::Index cells = body.T.rows() + body.F.rows();
+  if (body.von_mises.size() != 0 && body.von_mises.size() != cells) {
+    throw std::invalid_argument("body '" + body.name + "': von_mises has " + std::to_string(body.von_mises.size()) +
+                                " values, expected 0 or |T| + |F| = " + std::to_string(cells));
+  }
 }
 
 /// |V|×3 Eigen (column-major) → VTK tuple array (row-major); zeros when `a` is empty.
@@ -99,19 +110,36 @@ vtkSmartPointer<vtkUnstructuredGrid> to_vtk_grid(double time, const BodyFrame& b
   points->SetData(to_vtk_vectors(body.x, n, "Points"));
   grid->SetPoints(points);
 
-  // Offsets/connectivity built in one pass instead of InsertNextCell per triangle.
-  const Eigen::Index m = body.F.rows();
+  // Offsets/connectivity built in one pass instead of InsertNextCell per cell: tets, then triangles.
+  const Eigen::Index nt = body.T.rows(), m = body.F.rows();
   vtkNew<vtkIdTypeArray> offsets;
-  offsets->SetNumberOfValues(m + 1);
+  offsets->SetNumberOfValues(nt + m + 1);
   vtkNew<vtkIdTypeArray> connectivity;
-  connectivity->SetNumberOfValues(3 * m);
-  for (Eigen::Index f = 0; f <= m; ++f) offsets->SetValue(f, 3 * f);
-  for (Eigen::Index f = 0; f < m; ++f) {
-    for (int k = 0; k < 3; ++k) connectivity->SetValue(3 * f + k, body.F(f, k));
+  connectivity->SetNumberOfValues(4 * nt + 3 * m);
+  vtkNew<vtkUnsignedCharArray> types;
+  types->SetNumberOfValues(nt + m);
+  vtkIdType at = 0;
+  for (Eigen::Index t = 0; t < nt; ++t) {
+    offsets->SetValue(t, at);
+    types->SetValue(t, VTK_TETRA);
+    for (int k = 0; k < 4; ++k) connectivity->SetValue(at++, body.T(t, k));
   }
+  for (Eigen::Index f = 0; f < m; ++f) {
+    offsets->SetValue(nt + f, at);
+    types->SetValue(nt + f, VTK_TRIANGLE);
+    for (int k = 0; k < 3; ++k) connectivity->SetValue(at++, body.F(f, k));
+  }
+  offsets->SetValue(nt + m, at);
   vtkNew<vtkCellArray> cells;
   cells->SetData(offsets, connectivity);
-  grid->SetCells(VTK_TRIANGLE, cells);
+  grid->SetCells(types, cells);
+  if (body.von_mises.size() != 0) {
+    vtkNew<vtkDoubleArray> stress;
+    stress->SetName("von_mises");
+    stress->SetNumberOfValues(body.von_mises.size());
+    for (Eigen::Index c = 0; c < body.von_mises.size(); ++c) stress->SetValue(c, body.von_mises[c]);
+    grid->GetCellData()->AddArray(stress);
+  }
 
   vtkPointData* point_data = grid->GetPointData();
   point_data->AddArray(to_vtk_vectors(body.velocity, n, "velocity"));

@@ -5,10 +5,11 @@
 /// - `OUT/<scene>.pvd`: one DataSet entry per frame written completely
 ///   (timestep = time, file = frames/<scene>_NNNNNN.vtm);
 /// - `OUT/frames/<scene>_NNNNNN.vtm`: one block per body, block name = body name;
-/// - `OUT/frames/<scene>_NNNNNN/<index>_<sanitized body name>.vtu`: the body's surface triangles
-///   (VTK_TRIANGLE), point data `velocity`, `displacement`, `contact_force`, `friction_force`
-///   (3 components), field data `time` (double), `body`, `model` (strings); binary appended,
-///   zlib-compressed XML.
+/// - `OUT/frames/<scene>_NNNNNN/<index>_<sanitized body name>.vtu`: a soft body's tetrahedra
+///   (VTK_TETRA) followed by every body's surface triangles (VTK_TRIANGLE), point data
+///   `velocity`, `displacement`, `contact_force`, `friction_force` (3 components), cell data
+///   `von_mises` (Pa; a triangle carries its tetrahedron's value) when given, field data `time`
+///   (double), `body`, `model` (strings); binary appended, zlib-compressed XML.
 /// Every file is written atomically (io/atomic_file.hpp); the .vtm after its .vtu files, the .pvd
 /// after the .vtm, so the .pvd only ever lists complete frames.
 
@@ -20,12 +21,14 @@
 
 namespace stiffsoft {
 
-/// One body's surface in one frame.
+/// One body in one frame: its surface, and for a soft body its tetrahedra too.
 struct BodyFrame {
   std::string name;    ///< body name (block name in ParaView); any characters, sanitized for the file name
-  std::string model;   ///< "affine", "fixed", "kinematic", later "soft"
-  Eigen::MatrixX3d x;  ///< world vertex positions, |V|×3, m
-  Eigen::MatrixX3i F;  ///< triangles (vertex indices into x, 0-based), |F|×3
+  std::string model;   ///< "affine", "fixed", "kinematic", "soft"
+  Eigen::MatrixX3d x;  ///< world positions of the points (surface vertices, or all nodes of a soft body), |V|×3, m
+  Eigen::MatrixX3i F;  ///< surface triangles (point indices into x, 0-based), |F|×3
+  Eigen::MatrixX4i T;  ///< tetrahedra (point indices), |T|×4; empty for affine bodies
+  Eigen::VectorXd von_mises;  ///< von Mises stress per cell (Pa), tetrahedra then triangles (|T| + |F|); or empty
   Eigen::MatrixX3d velocity;        ///< vertex velocities, |V|×3, m/s; or empty (written as zeros)
   Eigen::MatrixX3d displacement;    ///< x − rest position, |V|×3, m; or empty (written as zeros)
   Eigen::MatrixX3d contact_force;   ///< per-vertex contact force, |V|×3, N; or empty (zeros)

@@ -44,23 +44,58 @@ struct OutputDescription {
 
 /// How a body moves.
 enum class BodyKind {
-  Affine,    ///< dynamic affine body, 12 DOFs
+  Dynamic,   ///< moves under forces (affine or soft, see ModelChoice)
   Fixed,     ///< static obstacle, no DOFs
-  Kinematic  ///< prescribed linear and angular velocity, no DOFs
+  Kinematic  ///< rigid, with prescribed linear and angular velocity
+};
+
+/// How a dynamic body is discretised.
+enum class ModelChoice {
+  Affine,  ///< one affine element, 12 DOFs
+  Soft,    ///< tetrahedral FEM
+  Auto     ///< affine when stiff enough for the scene's loads, soft otherwise (scene_builder.hpp)
+};
+
+/// `material`: a soft body's elastic material.
+struct MaterialDescription {
+  std::string model = "stable_neo_hookean";  ///< "linear", "fixed_corotated", "stable_neo_hookean"
+  double young = 1e6;                         ///< Young's modulus E (Pa), > 0
+  double poisson = 0.4;                       ///< Poisson ratio ν, in (−1, 0.5)
+};
+
+/// One entry of `dirichlet`: which nodes of a soft body are prescribed, and how they move.
+struct DirichletDescription {
+  /// How the nodes are selected.
+  enum class Select {
+    Box,        ///< inside [min, max]
+    HalfSpace,  ///< (x − point)·normal ≥ 0
+    NodeSet     ///< a named node set of the mesh file
+  };
+  Select select = Select::Box;                          ///< selection rule
+  Eigen::Vector3d min = Eigen::Vector3d::Zero();        ///< box lower corner (m)
+  Eigen::Vector3d max = Eigen::Vector3d::Zero();        ///< box upper corner (m)
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();      ///< half-space plane point (m)
+  Eigen::Vector3d normal = -Eigen::Vector3d::UnitY();   ///< half-space direction
+  std::string node_set;                                 ///< node-set name
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();   ///< prescribed velocity (m/s); zero: fixed
 };
 
 /// Where a body's surface comes from: a file or a primitive.
 struct MeshDescription {
-  std::filesystem::path file;              ///< .obj or .stl (absolute, resolved against the scene's folder); empty for a primitive
+  std::filesystem::path file;              ///< .obj, .stl, .msh, .step, .stp, .brep or .geo (absolute, resolved against the scene's folder); empty for a primitive
   std::optional<PrimitiveShape> primitive; ///< set when the mesh is a primitive
 };
 
 /// One entry of `bodies`.
 struct BodyDescription {
   std::string name;                      ///< unique, used as the ParaView block name
-  BodyKind kind = BodyKind::Affine;
-  MeshDescription mesh;
+  BodyKind kind = BodyKind::Dynamic;     ///< how it moves
+  ModelChoice model = ModelChoice::Affine;  ///< how a dynamic body is discretised
+  MeshDescription mesh;                  ///< its geometry
   double density = 1000.0;               ///< kg/m³, > 0
+  MaterialDescription material;          ///< soft and auto bodies
+  std::optional<double> mesh_size;       ///< target tet edge length (m); unset: 1/8 of the body's box diagonal
+  std::vector<DirichletDescription> dirichlet;  ///< prescribed nodes of a soft body
   double kappa = 1e8;                    ///< orthogonality stiffness κ (Pa), > 0
   Eigen::Vector3d position = Eigen::Vector3d::Zero();        ///< where the mesh's origin goes (m)
   Eigen::Vector3d rotation_deg = Eigen::Vector3d::Zero();    ///< XYZ Euler angles (degrees), R = Rz Ry Rx

@@ -3,7 +3,14 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include <spdlog/spdlog.h>
+
+#include "io/body_geometry.hpp"
+#include "io/dirichlet_selection.hpp"
+#include "io/model_choice.hpp"
 #include "libabd/mass_matrix.hpp"
+#include "libfem/lumped_mass.hpp"
+#include "meshing/tet_boundary.hpp"
 #include "meshing/intersection.hpp"
 #include "meshing/mass_moments.hpp"
 #include "meshing/mesh_checks.hpp"
@@ -22,26 +29,11 @@ Eigen::Matrix3d rotation(const Eigen::Vector3d& deg) {
       .toRotationMatrix();
 }
 
-SurfaceMesh body_mesh(const BodyDescription& body, const std::string& file, const std::string& path) {
-  SurfaceMesh mesh;
-  try {
-    mesh = body.mesh.primitive ? make_primitive(*body.mesh.primitive) : read_surface_mesh(body.mesh.file);
-  } catch (const std::exception& e) {
-    throw SceneError(file, path + ".mesh", e.what());
-  }
-  mesh.V = mesh.V * body.scale.asDiagonal();
-  if (const auto problem = closed_manifold_problem(mesh))
-    throw SceneError(file, path + ".mesh", "body '" + body.name + "' needs a closed, manifold, outward-oriented surface: " + *problem);
-  if (const auto faces = find_self_intersection(mesh))
-    throw SceneError(file, path + ".mesh", "body '" + body.name + "' has a self-intersecting surface (faces " +
-                                               std::to_string(faces->first) + " and " + std::to_string(faces->second) + ")");
-  return mesh;
-}
-
 }  // namespace
 
-const char* motion_name(Motion motion) {
-  switch (motion) {
+const char* motion_name(const BodyModel& body) {
+  if (body.representation == Representation::Soft) return "soft";
+  switch (body.motion) {
     case Motion::Dynamic: return "affine";
     case Motion::Fixed: return "fixed";
     case Motion::Kinematic: return "kinematic";
@@ -49,75 +41,181 @@ const char* motion_name(Motion motion) {
   return "affine";
 }
 
-Model build_model(const SceneDescription& scene, const std::filesystem::path& file) {
-  Model model;
+namespace {
+
+/// Appends a body's surface to the collision mesh: rows of x_bar, triangles and edges (local
+/// vertex indices), and the soft node of each vertex and tetrahedron of each triangle (both
+/// empty for an affine body).
+void append_surface(Model& model, int b, const Eigen::MatrixX3d& x_bar, const Eigen::MatrixX3i& F,
+                    const std::vector<int>& vertex_node, const std::vector<int>& face_tet) {
   CollisionMesh& cm = model.mesh;
+  BodyModel& body = model.bodies[b];
+  const int offset = int(cm.x_bar.rows());
+  const Eigen::MatrixX2i E = edges(F);
+  body.vertex_begin = offset;
+  body.vertex_end = offset + int(x_bar.rows());
+  body.face_begin = int(cm.F.rows());
+  body.face_end = body.face_begin + int(F.rows());
+  body.edge_begin = int(cm.E.rows());
+  body.edge_end = body.edge_begin + int(E.rows());
+  cm.x_bar.conservativeResize(body.vertex_end, 3);
+  cm.x_bar.bottomRows(x_bar.rows()) = x_bar;
+  cm.F.conservativeResize(body.face_end, 3);
+  cm.F.bottomRows(F.rows()) = F.array() + offset;
+  cm.E.conservativeResize(body.edge_end, 2);
+  cm.E.bottomRows(E.rows()) = E.array() + offset;
+  for (Eigen::Index v = 0; v < x_bar.rows(); ++v) {
+    cm.vertex_body.push_back(b);
+    cm.vertex_node.push_back(vertex_node.empty() ? -1 : vertex_node[v]);
+  }
+  cm.face_body.insert(cm.face_body.end(), F.rows(), b);
+  for (Eigen::Index f = 0; f < F.rows(); ++f) cm.face_tet.push_back(face_tet.empty() ? -1 : face_tet[f]);
+  cm.edge_body.insert(cm.edge_body.end(), E.rows(), b);
+}
+
+Motion motion_of(BodyKind kind) {
+  return kind == BodyKind::Fixed ? Motion::Fixed : kind == BodyKind::Kinematic ? Motion::Kinematic : Motion::Dynamic;
+}
+
+/// An affine (or fixed, or kinematic) body from its closed surface; returns its world surface.
+SurfaceMesh add_affine_body(Model& model, const BodyDescription& desc, const SurfaceMesh& mesh) {
+  const MassMoments moments = mass_moments(mesh);
+  const Eigen::Vector3d c = moments.first / moments.volume;
+  const Eigen::Matrix3d second_c = moments.second - moments.volume * c * c.transpose();
+  const abd::MassProperties mp = abd::mass_properties(moments.volume, Eigen::Vector3d::Zero(), second_c, desc.density);
+  BodyModel body;
+  body.name = desc.name;
+  body.motion = motion_of(desc.kind);
+  if (body.motion != Motion::Fixed) {
+    body.block = model.add_block(12);
+    body.dof = model.blocks[body.block].offset;
+  }
+  body.M = abd::mass_matrix(mp);
+  body.mass = mp.mass;
+  body.volume = moments.volume;
+  body.density = desc.density;
+  body.kappa = desc.kappa;
+  const Eigen::Matrix3d R = rotation(desc.rotation_deg);
+  body.q0 = abd::make_q(R * c + desc.position, R);
+  body.v0 = desc.velocity;
+  body.w0 = desc.angular_velocity;
+  model.bodies.push_back(std::move(body));
+  append_surface(model, int(model.bodies.size()) - 1, mesh.V.rowwise() - c.transpose(), mesh.F, {}, {});
+  return {(mesh.V * R.transpose()).rowwise() + desc.position.transpose(), mesh.F};
+}
+
+/// A soft body from its tet mesh (body frame, scaled); returns its world surface.
+SurfaceMesh add_soft_body(Model& model, const BodyDescription& desc, TetMesh mesh, const std::string& file,
+                          const std::string& path) {
+  const Eigen::Matrix3d R = rotation(desc.rotation_deg);
+  mesh.X = (mesh.X * R.transpose()).rowwise() + desc.position.transpose();
+  const int n = int(mesh.X.rows());
+  std::vector<Motion> motion(n, Motion::Dynamic);
+  Eigen::MatrixX3d velocity(n, 3);
+  const Eigen::VectorXd mass = fem::lumped_mass(mesh.X, mesh.T, desc.density);
+  const Eigen::Vector3d centre = (mesh.X.transpose() * mass) / mass.sum();
+  for (int i = 0; i < n; ++i)
+    velocity.row(i) = (desc.velocity + desc.angular_velocity.cross(mesh.X.row(i).transpose() - centre)).transpose();
+  apply_dirichlet(mesh, desc.dirichlet, desc.name, file, path, motion, velocity);
+
+  const int b = int(model.bodies.size());
+  BodyModel body;
+  body.name = desc.name;
+  body.representation = Representation::Soft;
+  body.mass = mass.sum();
+  body.volume = tet_mesh_volume(mesh);
+  body.density = desc.density;
+  body.material = {desc.material.model, desc.material.young, desc.material.poisson};
+  body.v0 = desc.velocity;
+  body.w0 = desc.angular_velocity;
+  SoftNodes& nodes = model.nodes;
+  body.node_begin = nodes.size();
+  body.node_end = body.node_begin + n;
+  body.tet_begin = int(nodes.T.rows());
+  body.tet_end = body.tet_begin + int(mesh.T.rows());
+  nodes.X.conservativeResize(body.node_end, 3);
+  nodes.X.bottomRows(n) = mesh.X;
+  nodes.velocity.conservativeResize(body.node_end, 3);
+  nodes.velocity.bottomRows(n) = velocity;
+  nodes.mass.conservativeResize(body.node_end);
+  nodes.mass.tail(n) = mass;
+  nodes.T.conservativeResize(body.tet_end, 4);
+  nodes.T.bottomRows(mesh.T.rows()) = mesh.T.array() + body.node_begin;
+  for (int i = 0; i < n; ++i) {
+    nodes.motion.push_back(motion[i]);
+    nodes.body.push_back(b);
+    const int block = motion[i] == Motion::Fixed ? -1 : model.add_block(3);
+    nodes.block.push_back(block);
+    nodes.dof.push_back(block < 0 ? -1 : model.blocks[block].offset);
+  }
+  model.bodies.push_back(std::move(body));
+
+  const TetBoundary boundary = boundary_surface(mesh, desc.name);
+  std::vector<int> vertex_node(boundary.node_of_vertex.size());
+  for (size_t v = 0; v < vertex_node.size(); ++v) vertex_node[v] = model.bodies[b].node_begin + boundary.node_of_vertex[v];
+  std::vector<int> face_tet(boundary.tet_of_face.size());
+  for (size_t f = 0; f < face_tet.size(); ++f) face_tet[f] = model.bodies[b].tet_begin + boundary.tet_of_face[f];
+  append_surface(model, b, boundary.surface.V, boundary.surface.F, vertex_node, face_tet);
+  return boundary.surface;
+}
+
+/// The loads that decide `auto` bodies (model_choice.hpp), from every body's surface.
+SceneLoads scene_loads(const SceneDescription& scene, const std::vector<SurfaceMesh>& surfaces) {
+  SceneLoads loads;
+  Eigen::Array3d lo = Eigen::Array3d::Constant(1e300), hi = Eigen::Array3d::Constant(-1e300);
+  double fastest = 0;
+  for (size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodyDescription& desc = scene.bodies[i];
+    const Eigen::Matrix3d R = rotation(desc.rotation_deg);
+    const Eigen::MatrixX3d world = (surfaces[i].V * R.transpose()).rowwise() + desc.position.transpose();
+    lo = lo.min(world.colwise().minCoeff().transpose().array());
+    hi = hi.max(world.colwise().maxCoeff().transpose().array());
+    if (desc.kind != BodyKind::Dynamic) continue;
+    loads.weight += desc.density * mass_moments(surfaces[i]).volume * scene.gravity.norm();
+    const double radius = (surfaces[i].V.colwise().maxCoeff() - surfaces[i].V.colwise().minCoeff()).norm() / 2;
+    fastest = std::max(fastest, desc.velocity.norm() + desc.angular_velocity.norm() * radius);
+  }
+  const double g = scene.gravity.norm();
+  const double height = g > 0 ? std::abs((hi - lo).matrix().dot(scene.gravity / g)) : 0.0;
+  loads.fastest_speed = fastest + std::sqrt(2 * g * height);
+  return loads;
+}
+
+/// Whether body i is simulated as a soft body; logs the choice of `auto` bodies.
+bool is_soft(const SceneDescription& scene, size_t i, const SurfaceMesh& surface, const SceneLoads& loads) {
+  const BodyDescription& desc = scene.bodies[i];
+  if (desc.kind != BodyKind::Dynamic || desc.model == ModelChoice::Affine) return false;
+  if (desc.model == ModelChoice::Soft) return true;
+  const double strain = estimated_strain(loads, mass_moments(surface).volume, desc.density, desc.material.young);
+  const bool affine = auto_is_affine(strain);
+  spdlog::info("body '{}': model auto → {} (estimated strain {:.2g} {} {:.0e}: weight {:.3g} N, speed {:.3g} m/s)",
+               desc.name, affine ? "affine" : "soft", strain, affine ? "<" : "≥", kAutoAffineStrain, loads.weight,
+               loads.fastest_speed);
+  return !affine;
+}
+
+}  // namespace
+
+Model build_model(const SceneDescription& scene, const std::filesystem::path& file) {
+  std::vector<SurfaceMesh> surfaces;
+  for (size_t i = 0; i < scene.bodies.size(); ++i)
+    surfaces.push_back(body_surface(scene.bodies[i], file.string(), "bodies[" + std::to_string(i) + "]"));
+  const SceneLoads loads = scene_loads(scene, surfaces);
+
+  Model model;
   std::vector<SurfaceMesh> world;
   std::vector<std::string> names;
-  std::vector<Eigen::RowVector3d> x_bar_rows;
-  std::vector<Eigen::RowVector3i> faces;
-  std::vector<Eigen::RowVector2i> edge_rows;
-  int vertex_offset = 0;
   for (size_t i = 0; i < scene.bodies.size(); ++i) {
     const BodyDescription& desc = scene.bodies[i];
     const std::string path = "bodies[" + std::to_string(i) + "]";
-    SurfaceMesh mesh = body_mesh(desc, file.string(), path);
-    const MassMoments moments = mass_moments(mesh);
-    const Eigen::Vector3d c = moments.first / moments.volume;
-    const Eigen::Matrix3d second_c = moments.second - moments.volume * c * c.transpose();
-    const abd::MassProperties mp =
-        abd::mass_properties(moments.volume, Eigen::Vector3d::Zero(), second_c, desc.density);
-
-    BodyModel body;
-    body.name = desc.name;
-    body.motion = desc.kind == BodyKind::Fixed       ? Motion::Fixed
-                  : desc.kind == BodyKind::Kinematic ? Motion::Kinematic
-                                                     : Motion::Dynamic;
-    if (body.motion != Motion::Fixed) {
-      body.block = model.add_block(12);
-      body.dof = model.blocks[body.block].offset;
+    if (is_soft(scene, i, surfaces[i], loads)) {
+      const double h = soft_mesh_size(desc, surfaces[i], file.string(), path);
+      world.push_back(add_soft_body(model, desc, body_tet_mesh(desc, h, file.string(), path), file.string(), path));
+    } else {
+      world.push_back(add_affine_body(model, desc, surfaces[i]));
     }
-    body.M = abd::mass_matrix(mp);
-    body.mass = mp.mass;
-    body.volume = moments.volume;
-    body.kappa = desc.kappa;
-    const Eigen::Matrix3d R = rotation(desc.rotation_deg);
-    body.q0 = abd::make_q(R * c + desc.position, R);
-    body.v0 = desc.velocity;
-    body.w0 = desc.angular_velocity;
-
-    const Eigen::MatrixX2i E = edges(mesh.F);
-    body.vertex_begin = vertex_offset;
-    body.vertex_end = vertex_offset + int(mesh.V.rows());
-    body.face_begin = int(faces.size());
-    body.face_end = body.face_begin + int(mesh.F.rows());
-    body.edge_begin = int(edge_rows.size());
-    body.edge_end = body.edge_begin + int(E.rows());
-    for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) {
-      x_bar_rows.push_back(mesh.V.row(v) - c.transpose());
-      cm.vertex_body.push_back(int(i));
-      cm.vertex_node.push_back(-1);
-    }
-    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-      faces.push_back(mesh.F.row(f).array() + vertex_offset);
-      cm.face_body.push_back(int(i));
-    }
-    for (Eigen::Index e = 0; e < E.rows(); ++e) {
-      edge_rows.push_back(E.row(e).array() + vertex_offset);
-      cm.edge_body.push_back(int(i));
-    }
-    vertex_offset = body.vertex_end;
-    world.push_back({(mesh.V * R.transpose()).rowwise() + desc.position.transpose(), mesh.F});
     names.push_back(desc.name);
-    model.bodies.push_back(std::move(body));
   }
-  cm.x_bar.resize(x_bar_rows.size(), 3);
-  for (size_t v = 0; v < x_bar_rows.size(); ++v) cm.x_bar.row(v) = x_bar_rows[v];
-  cm.F.resize(faces.size(), 3);
-  for (size_t f = 0; f < faces.size(); ++f) cm.F.row(f) = faces[f];
-  cm.E.resize(edge_rows.size(), 2);
-  for (size_t e = 0; e < edge_rows.size(); ++e) cm.E.row(e) = edge_rows[e];
-
   if (const auto overlap = find_overlap(world))
     throw SceneError(file.string(), "bodies",
                      "bodies must start apart (intersection-free), but " + describe(*overlap, names));

@@ -11,10 +11,12 @@
 
 namespace stiffsoft {
 
-/// Builds the model: reads or makes every body's mesh, checks it closed, manifold and
-/// outward-oriented, computes exact mass properties (divergence theorem), places it, and
-/// checks that no two bodies overlap (exact predicates). Errors are SceneError naming
-/// `file`, the body's JSON path and, for overlaps, both bodies.
+/// Builds the model: reads or makes every body's surface, checks it closed, manifold and
+/// outward-oriented; decides `auto` bodies (model_choice.hpp); affine bodies get exact mass
+/// properties (divergence theorem), soft bodies a gmsh tet mesh (cached), lumped masses and
+/// their Dirichlet conditions; places them and checks that no two bodies overlap (exact
+/// predicates). Errors are SceneError naming `file`, the body's JSON path and, for overlaps,
+/// both bodies.
 Model build_model(const SceneDescription& scene, const std::filesystem::path& file);
 
 /// Fills the scene's relative defaults (d̂, ε_v, Newton tolerance, frame interval) from the
@@ -25,7 +27,7 @@ void resolve_relative_defaults(SceneDescription& scene, const Model& model);
 /// Simulation settings of a scene whose relative defaults are resolved.
 SimulationSettings simulation_settings(const SceneDescription& scene);
 
-/// The model name of a body's motion for output: "affine", "fixed", "kinematic".
-const char* motion_name(Motion motion);
+/// The body's model for output: "soft", or for affine bodies "affine", "fixed", "kinematic".
+const char* motion_name(const BodyModel& body);
 
 }  // namespace stiffsoft

@@ -31,16 +31,48 @@ std::string integrator_name(Integrator integrator) {
 BodyKind kind_from(const std::string& name) {
   if (name == "fixed") return BodyKind::Fixed;
   if (name == "kinematic") return BodyKind::Kinematic;
-  return BodyKind::Affine;
+  return BodyKind::Dynamic;
 }
 
 std::string kind_name(BodyKind kind) {
   switch (kind) {
     case BodyKind::Fixed: return "fixed";
     case BodyKind::Kinematic: return "kinematic";
-    case BodyKind::Affine: break;
+    case BodyKind::Dynamic: break;
+  }
+  return "dynamic";
+}
+
+ModelChoice model_from(const std::string& name) {
+  if (name == "soft") return ModelChoice::Soft;
+  if (name == "auto") return ModelChoice::Auto;
+  return ModelChoice::Affine;
+}
+
+std::string model_name(ModelChoice model) {
+  switch (model) {
+    case ModelChoice::Soft: return "soft";
+    case ModelChoice::Auto: return "auto";
+    case ModelChoice::Affine: break;
   }
   return "affine";
+}
+
+const char* const kSelectNames[] = {"box", "half_space", "node_set"};
+
+DirichletDescription dirichlet_from(const Json& d) {
+  DirichletDescription out;
+  const std::string select = d.at("select").get<std::string>();
+  out.select = select == "half_space" ? DirichletDescription::Select::HalfSpace
+               : select == "node_set" ? DirichletDescription::Select::NodeSet
+                                      : DirichletDescription::Select::Box;
+  if (d.contains("min")) out.min = vector3(d["min"]);
+  if (d.contains("max")) out.max = vector3(d["max"]);
+  if (d.contains("point")) out.point = vector3(d["point"]);
+  if (d.contains("normal")) out.normal = vector3(d["normal"]);
+  if (d.contains("node_set")) out.node_set = d["node_set"].get<std::string>();
+  out.velocity = vector3(d.at("velocity"));
+  return out;
 }
 
 PrimitiveShape::Type primitive_from(const std::string& name) {
@@ -132,8 +164,16 @@ SceneDescription scene_from(const Json& scene, const std::string& name) {
     BodyDescription b;
     b.name = body.at("name").get<std::string>();
     b.kind = kind_from(body.at("kind").get<std::string>());
+    b.model = model_from(body.at("model").get<std::string>());
     b.mesh = mesh_from(body.at("mesh"));
     b.density = body.at("density").get<double>();
+    if (body.contains("material")) {
+      const Json& m = body["material"];
+      b.material = {m.at("model").get<std::string>(), m.at("young").get<double>(), m.at("poisson").get<double>()};
+    }
+    if (body.contains("mesh_size")) b.mesh_size = optional_number(body["mesh_size"]);
+    if (body.contains("dirichlet"))
+      for (const Json& d : body["dirichlet"]) b.dirichlet.push_back(dirichlet_from(d));
     b.kappa = body.at("kappa").get<double>();
     b.position = vector3(body.at("position"));
     b.rotation_deg = vector3(body.at("rotation_deg"));
@@ -230,6 +270,7 @@ nlohmann::json resolved_scene_json(const SceneDescription& scene) {
     Json b = Json::object();
     b["name"] = body.name;
     b["kind"] = kind_name(body.kind);
+    b["model"] = model_name(body.model);
     if (body.mesh.primitive) {
       const PrimitiveShape& shape = *body.mesh.primitive;
       const std::string primitive = primitive_name(shape.type);
@@ -244,6 +285,30 @@ nlohmann::json resolved_scene_json(const SceneDescription& scene) {
       b["mesh"] = body.mesh.file.string();
     }
     b["density"] = body.density;
+    if (body.model != ModelChoice::Affine) {
+      b["material"] = {{"model", body.material.model},
+                       {"young", body.material.young},
+                       {"poisson", body.material.poisson}};
+      b["mesh_size"] = optional_json(body.mesh_size);
+      Json list = Json::array();
+      for (const DirichletDescription& d : body.dirichlet) {
+        Json entry = {{"select", kSelectNames[int(d.select)]}};
+        switch (d.select) {
+          case DirichletDescription::Select::Box:
+            entry["min"] = vector_json(d.min);
+            entry["max"] = vector_json(d.max);
+            break;
+          case DirichletDescription::Select::HalfSpace:
+            entry["point"] = vector_json(d.point);
+            entry["normal"] = vector_json(d.normal);
+            break;
+          case DirichletDescription::Select::NodeSet: entry["node_set"] = d.node_set; break;
+        }
+        entry["velocity"] = vector_json(d.velocity);
+        list.push_back(entry);
+      }
+      b["dirichlet"] = list;
+    }
     b["kappa"] = body.kappa;
     b["position"] = vector_json(body.position);
     b["rotation_deg"] = vector_json(body.rotation_deg);

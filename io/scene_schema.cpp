@@ -62,11 +62,15 @@ constexpr const char* kSchemaText = R"JSON([
   {"pointer": "/bodies/*", "type": "object", "doc": "One body."},
   {"pointer": "/bodies/*/name", "type": "string", "required": true,
    "doc": "Unique, non-empty name; the ParaView block name."},
-  {"pointer": "/bodies/*/kind", "type": "string", "default": "affine",
-   "options": ["affine", "fixed", "kinematic"],
-   "doc": "affine: dynamic affine body (12 DOFs); fixed: static obstacle; kinematic: moves with the prescribed velocity and angular_velocity."},
-  {"pointer": "/bodies/*/mesh", "type": "file", "required": true, "extensions": [".obj", ".stl"],
-   "doc": "A closed triangle mesh file, relative to the scene file's folder."},
+  {"pointer": "/bodies/*/kind", "type": "string", "default": "dynamic",
+   "options": ["dynamic", "fixed", "kinematic"],
+   "doc": "dynamic: moves under forces, as an affine or soft body (see model); fixed: static obstacle; kinematic: rigid, moves with the prescribed velocity and angular_velocity."},
+  {"pointer": "/bodies/*/model", "type": "string", "default": "affine",
+   "options": ["affine", "soft", "auto"],
+   "doc": "How a dynamic body is discretised: affine (one stiff element, 12 DOFs), soft (tetrahedral FEM meshed by gmsh), or auto: affine when the material's strain under the scene's loads stays below 1e-3 (see docs/soft_bodies.md), soft otherwise; the choice is logged."},
+  {"pointer": "/bodies/*/mesh", "type": "file", "required": true,
+   "extensions": [".obj", ".stl", ".msh", ".step", ".stp", ".brep", ".geo"],
+   "doc": "A mesh or geometry file, relative to the scene file's folder: a closed triangle surface (.obj, .stl), a gmsh tet mesh (.msh), CAD (.step, .stp, .brep) or a gmsh script (.geo). Soft bodies are tet-meshed from it; affine bodies use its surface."},
   {"pointer": "/bodies/*/mesh", "type": "object", "required": true,
    "doc": "A primitive shape centred at the origin, axis of symmetry along y."},
   {"pointer": "/bodies/*/mesh/primitive", "type": "string", "required": true,
@@ -89,6 +93,36 @@ constexpr const char* kSchemaText = R"JSON([
    "doc": "Segments around a circle (sphere: around the equator; torus: around both circles)."},
   {"pointer": "/bodies/*/density", "type": "number", "default": 1000.0, "exclusive_min": 0,
    "unit": "kg/m³", "doc": "Mass density (unused by fixed and kinematic bodies)."},
+  {"pointer": "/bodies/*/material", "type": "object", "when": {"model": ["soft", "auto"]},
+   "doc": "Elastic material of a soft body (and of an auto body, for the choice)."},
+  {"pointer": "/bodies/*/material/model", "type": "string", "default": "stable_neo_hookean",
+   "options": ["linear", "fixed_corotated", "stable_neo_hookean"],
+   "doc": "Constitutive model: linear elasticity (small strain only), fixed corotated (Stomakhin et al. 2012) or stable neo-Hookean (Smith et al. 2018; survives inversion)."},
+  {"pointer": "/bodies/*/material/young", "type": "number", "default": 1e6, "exclusive_min": 0, "unit": "Pa",
+   "doc": "Young's modulus E."},
+  {"pointer": "/bodies/*/material/poisson", "type": "number", "default": 0.4, "exclusive_min": -1, "exclusive_max": 0.5,
+   "doc": "Poisson ratio ν; 0.5 (incompressible) would make λ infinite."},
+  {"pointer": "/bodies/*/mesh_size", "type": "number", "default": null, "exclusive_min": 0, "unit": "m",
+   "default_doc": "1/8 of the body's bounding-box diagonal", "when": {"model": ["soft", "auto"]},
+   "doc": "Target tetrahedron edge length h for gmsh (unused for .msh files). Meshes are cached by content in $STIFFSOFT_MESH_CACHE or ~/.cache/stiffsoft/meshes."},
+  {"pointer": "/bodies/*/dirichlet", "type": "list", "default": [], "when": {"model": ["soft", "auto"]},
+   "doc": "Dirichlet conditions on a soft body's nodes (positions in the world frame, after placement). Each must select at least one node."},
+  {"pointer": "/bodies/*/dirichlet/*", "type": "object", "doc": "One Dirichlet condition."},
+  {"pointer": "/bodies/*/dirichlet/*/select", "type": "string", "required": true,
+   "options": ["box", "half_space", "node_set"],
+   "doc": "box: nodes inside [min, max]; half_space: nodes with (x − point)·normal ≥ 0; node_set: a named node set (physical group) of a .msh or .geo file."},
+  {"pointer": "/bodies/*/dirichlet/*/min", "type": "vector3", "default": [0.0, 0.0, 0.0], "unit": "m",
+   "when": {"select": ["box"]}, "doc": "Lower corner of the box."},
+  {"pointer": "/bodies/*/dirichlet/*/max", "type": "vector3", "default": [0.0, 0.0, 0.0], "unit": "m",
+   "when": {"select": ["box"]}, "doc": "Upper corner of the box."},
+  {"pointer": "/bodies/*/dirichlet/*/point", "type": "vector3", "default": [0.0, 0.0, 0.0], "unit": "m",
+   "when": {"select": ["half_space"]}, "doc": "A point on the bounding plane."},
+  {"pointer": "/bodies/*/dirichlet/*/normal", "type": "vector3", "default": [0.0, -1.0, 0.0],
+   "when": {"select": ["half_space"]}, "doc": "Direction into the selected side (need not be unit length)."},
+  {"pointer": "/bodies/*/dirichlet/*/node_set", "type": "string", "default": "",
+   "when": {"select": ["node_set"]}, "doc": "Name of the node set."},
+  {"pointer": "/bodies/*/dirichlet/*/velocity", "type": "vector3", "default": [0.0, 0.0, 0.0], "unit": "m/s",
+   "doc": "Prescribed velocity of the selected nodes: zero holds them fixed, otherwise they move at this velocity (followed through a stiff pull, like kinematic bodies)."},
   {"pointer": "/bodies/*/kappa", "type": "number", "default": 1e8, "exclusive_min": 0,
    "unit": "Pa", "doc": "Orthogonality stiffness κ of the affine body; rigidity error ≈ stress / κ."},
   {"pointer": "/bodies/*/position", "type": "vector3", "default": [0.0, 0.0, 0.0], "unit": "m",
@@ -233,6 +267,8 @@ class Validator {
       fail(path, "must be > " + entry["exclusive_min"].dump() + " (got " + value.dump() + ")");
     if (entry.contains("min") && !(x >= entry["min"].get<double>()))
       fail(path, "must be >= " + entry["min"].dump() + " (got " + value.dump() + ")");
+    if (entry.contains("exclusive_max") && !(x < entry["exclusive_max"].get<double>()))
+      fail(path, "must be < " + entry["exclusive_max"].dump() + " (got " + value.dump() + ")");
     if (entry.contains("max") && !(x <= entry["max"].get<double>()))
       fail(path, "must be <= " + entry["max"].dump() + " (got " + value.dump() + ")");
   }
@@ -401,6 +437,7 @@ std::string markdown_allowed(const Json& entry) {
   std::vector<std::string> parts;
   if (entry.contains("exclusive_min")) parts.push_back("> " + markdown_value(entry["exclusive_min"]));
   if (entry.contains("min")) parts.push_back("≥ " + markdown_value(entry["min"]));
+  if (entry.contains("exclusive_max")) parts.push_back("< " + markdown_value(entry["exclusive_max"]));
   if (entry.contains("max")) parts.push_back("≤ " + markdown_value(entry["max"]));
   if (entry.contains("options")) {
     std::string options;

@@ -39,7 +39,7 @@ class SceneError : public std::runtime_error {
 /// `pointer` (`/bodies/*/density`; `*` is any list element), `type` (object, list,
 /// number, integer, string, vector3, file), `doc`, and where they apply `required`,
 /// `default` (null: computed from the scene, explained by `default_doc`), `min`,
-/// `exclusive_min`, `max`, `options` (allowed strings), `extensions` (file),
+/// `exclusive_min`, `max`, `exclusive_max`, `options` (allowed strings), `extensions` (file),
 /// `min_length` (list), `unit`, and `when` ({sibling key: [values]}: the key is only
 /// allowed when a sibling has one of these values). Two entries with the same pointer
 /// are alternatives (a mesh is a file or a primitive object).

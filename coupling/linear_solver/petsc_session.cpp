@@ -78,6 +78,16 @@ int PetscSession::size() {
   return s;
 }
 
+void set_petsc_option(const std::string& name, const std::string& value) {
+  ensure_petsc_initialized();
+  if (PetscOptionsSetValue(nullptr, name.c_str(), value.empty() ? nullptr : value.c_str()) != 0)
+    throw std::runtime_error("set_petsc_option: PETSc rejected " + name + " " + value);
+}
+
+void clear_petsc_option(const std::string& name) {
+  if (PetscSession::running()) PetscOptionsClearValue(nullptr, name.c_str());
+}
+
 void ensure_petsc_initialized() {
   // A function-local static: destroyed (PetscFinalize) at exit, after main's objects.
   static std::unique_ptr<PetscSession> lazy;

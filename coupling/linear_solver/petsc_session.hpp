@@ -53,6 +53,13 @@ class PetscSession {
   bool m_owns = false;
 };
 
+/// Sets `name` (e.g. "-ksp_monitor") in PETSc's options database, with an optional value;
+/// objects created afterwards see it. Starts PETSc if needed.
+void set_petsc_option(const std::string& name, const std::string& value = "");
+
+/// Removes `name` from PETSc's options database (no-op when absent or PETSc is not running).
+void clear_petsc_option(const std::string& name);
+
 /// Starts PETSc without options (beyond PETSC_OPTIONS / ~/.petscrc) if it is not running, and
 /// finalises it at process exit; does nothing when a PetscSession (or anything else) started it.
 /// Throws std::runtime_error when PETSc was already finalised (MPI cannot restart).

@@ -87,9 +87,11 @@ PetscErrorCode apply_block_jacobi(PC pc, Vec x, Vec y) {
 }  // namespace
 
 std::string default_matrix_type(const std::string& pc_type) {
-  // PETSc 3.18 factors ICC only for SBAIJ and AIJ, and BoomerAMG takes AIJ without conversion.
+  // PETSc 3.18 factors ICC only for SBAIJ and AIJ; GAMG builds its graph only from AIJ
+  // ("No method creategraph for Mat of type seqbaij"); BoomerAMG takes AIJ without conversion.
+  // Sub-solvers of PETSc's block Jacobi (ILU by default, ICC) need AIJ or SBAIJ too.
   if (pc_type == "icc") return "sbaij";
-  if (pc_type == "hypre") return "aij";
+  if (pc_type == "gamg" || pc_type == "hypre" || pc_type == "bjacobi" || pc_type == "asm") return "aij";
   return "baij";
 }
 
@@ -107,6 +109,7 @@ struct PetscSolver::Impl {
   int n = 0, row_begin = 0, row_end = 0;
   std::unique_ptr<BlockJacobi> block_jacobi;
   bool shell = false;                 // the PC in use is our block Jacobi
+  std::string preconditioner;         // the PC in use, in our names ("vpbjacobi" for the shell)
   bool rtol_from_options = false;     // -ksp_rtol given: it wins over set_relative_tolerance()
   double rtol = 1e-8;
   int preallocations = 0;
@@ -243,7 +246,20 @@ PetscSolver::PetscSolver(const PetscSolverSettings& settings) : m_impl(std::make
     STIFFSOFT_PETSC(KSPSetNormType(m.ksp, KSP_NORM_UNPRECONDITIONED));
   if ((ksp == KSPGMRES || ksp == KSPFGMRES) && !has_option("-ksp_pc_side"))
     STIFFSOFT_PETSC(KSPSetPCSide(m.ksp, PC_RIGHT));
+  // PETSc's own PCVPBJACOBI needs AIJ: -pc_type vpbjacobi on the command line means ours.
+  if (m.pc_type() == PCVPBJACOBI && m.settings.matrix_type != "aij") {
+    STIFFSOFT_PETSC(PCSetType(m.pc(), PCSHELL));
+    STIFFSOFT_PETSC(PCShellSetApply(m.pc(), apply_block_jacobi));
+    STIFFSOFT_PETSC(PCShellSetName(m.pc(), "vpbjacobi: stiffsoft's inverse diagonal DOF blocks (12x12 / 3x3)"));
+  }
   m.shell = m.pc_type() == PCSHELL;
+  // The preconditioner in use decides the default matrix type (the options may have changed it).
+  if (m.shell)
+    m.preconditioner = "vpbjacobi";
+  else if (m.pc_type() == PCBJACOBI && settings.pc_type == "icc")
+    m.preconditioner = "icc";
+  else
+    m.preconditioner = m.pc_type();
   if (m.rtol_from_options) {
     PetscReal rtol = 0, atol = 0, dtol = 0;
     PetscInt its = 0;
@@ -275,16 +291,15 @@ int PetscSolver::preallocations() const { return m_impl->preallocations; }
 std::pair<int, int> PetscSolver::owned_rows() const { return {m_impl->row_begin, m_impl->row_end}; }
 
 std::string PetscSolver::name() const {
-  const std::string pc = m_impl->shell ? "vpbjacobi" : m_impl->pc_type();
-  return "petsc:" + m_impl->ksp_type() + ":" + pc;
+  return "petsc:" + m_impl->ksp_type() + ":" + m_impl->preconditioner;
 }
 
 void PetscSolver::analyze_pattern(const Eigen::SparseMatrix<double>& upper) {
   Impl& m = *m_impl;
   const int n = int(upper.rows());
-  if (n % 3 != 0 || upper.cols() != n)
+  if (n == 0 || n % 3 != 0 || upper.cols() != n)
     throw std::invalid_argument("PETSc backend: the matrix is " + std::to_string(upper.rows()) + " × " +
-                                std::to_string(upper.cols()) + "; expected square with a multiple of 3 rows");
+                                std::to_string(upper.cols()) + "; expected square with a positive multiple of 3 rows");
   if (!m.given_block_sizes.empty()) {
     long sum = 0;
     for (const int s : m.given_block_sizes) sum += s;
@@ -305,7 +320,7 @@ void PetscSolver::analyze_pattern(const Eigen::SparseMatrix<double>& upper) {
   STIFFSOFT_PETSC(MatCreate(m.comm, &m.A));
   STIFFSOFT_PETSC(MatSetSizes(m.A, local, local, n, n));
   const std::string type =
-      m.settings.matrix_type.empty() ? default_matrix_type(m.settings.pc_type) : m.settings.matrix_type;
+      m.settings.matrix_type.empty() ? default_matrix_type(m.preconditioner) : m.settings.matrix_type;
   if (type != "baij" && type != "sbaij" && type != "aij")
     throw std::invalid_argument("PETSc backend: matrix type '" + type + "'; expected baij, sbaij or aij");
   STIFFSOFT_PETSC(MatSetType(m.A, type.c_str()));
@@ -325,7 +340,9 @@ void PetscSolver::analyze_pattern(const Eigen::SparseMatrix<double>& upper) {
   STIFFSOFT_PETSC(MatSetOption(m.A, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));
   STIFFSOFT_PETSC(MatSetOption(m.A, MAT_SYMMETRIC, PETSC_TRUE));
   STIFFSOFT_PETSC(MatSetOption(m.A, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
-  STIFFSOFT_PETSC(MatSetOption(m.A, MAT_SPD, PETSC_TRUE));
+  PetscBool mpibaij = PETSC_FALSE;  // PETSc 3.18's MPIBAIJ rejects MAT_SPD, a hint only
+  STIFFSOFT_PETSC(PetscObjectTypeCompare((PetscObject)m.A, MATMPIBAIJ, &mpibaij));
+  if (!mpibaij) STIFFSOFT_PETSC(MatSetOption(m.A, MAT_SPD, PETSC_TRUE));
   STIFFSOFT_PETSC(MatCreateVecs(m.A, &m.x, &m.b));
   STIFFSOFT_PETSC(VecDuplicate(m.x, &m.r));
   STIFFSOFT_PETSC(VecScatterCreateToAll(m.x, &m.to_all, &m.x_all));

@@ -25,13 +25,15 @@ const BrokenCase kBroken[] = {
     {"missing_body_name.json", "bodies[1].name: required key is missing"},
     {"wrong_type_dt.json", "time.dt: must be a number (got string \"0.01\")"},
     {"negative_density.json", "bodies[3].density: must be > 0 (got -2)"},
-    {"unknown_key.json", "bodies[1].frobnicate: unknown key (allowed: name, kind, mesh, density, kappa, position, "
-                         "rotation_deg, scale, velocity, angular_velocity)"},
+    {"unknown_key.json", "bodies[1].frobnicate: unknown key (allowed: name, kind, model, mesh, density, material, "
+                         "mesh_size, dirichlet, kappa, position, rotation_deg, scale, velocity, angular_velocity)"},
+    {"poisson_half.json", "bodies[0].material.poisson: must be < 0.5 (got 0.5)"},
+    {"material_on_affine_body.json", "bodies[0].material: only allowed when model is soft or auto"},
     {"unknown_top_level_key.json", "gravty: unknown key (allowed: description, time, gravity,"},
     {"unknown_integrator.json", "time.integrator: unknown value \"rk4\" (allowed: backward_euler, bdf2)"},
-    {"unknown_body_kind.json", "bodies[0].kind: unknown value \"soft\" (allowed: affine, fixed, kinematic)"},
+    {"unknown_body_kind.json", "bodies[0].kind: unknown value \"soft\" (allowed: dynamic, fixed, kinematic)"},
     {"missing_mesh_file.json", "bodies[0].mesh: mesh file not found: "},
-    {"unsupported_mesh_extension.json", "bodies[0].mesh: unsupported mesh file extension \".ply\" (allowed: .obj, .stl)"},
+    {"unsupported_mesh_extension.json", "bodies[0].mesh: unsupported mesh file extension \".ply\" (allowed: .obj, .stl, .msh, .step, .stp, .brep, .geo)"},
     {"bad_syntax.json", "line 5, column 3: invalid JSON: "},
     {"duplicate_body_names.json", "bodies[2].name: duplicate body name \"crate\" (also used by bodies[0])"},
     {"wrong_array_length.json", "bodies[0].position: must be an array of 3 numbers (got an array of 2)"},
@@ -120,11 +122,11 @@ TEST(SceneLoader, AGoodSceneKeepsEveryValueItGives) {
   EXPECT_EQ(s.solver.max_iterations, 17);
   EXPECT_EQ(s.solver.linear, "cholmod");
   EXPECT_EQ(s.output.frame_dt, 0.05);
-  ASSERT_EQ(s.bodies.size(), 6u);
+  ASSERT_EQ(s.bodies.size(), 7u);
 
   const BodyDescription& tet = s.bodies[0];
   EXPECT_EQ(tet.name, "tet");
-  EXPECT_EQ(tet.kind, BodyKind::Affine);
+  EXPECT_EQ(tet.kind, BodyKind::Dynamic);
   EXPECT_FALSE(tet.mesh.primitive.has_value());
   EXPECT_TRUE(tet.mesh.file.is_absolute());
   EXPECT_EQ(tet.mesh.file, (kData / "meshes" / "tet.obj").lexically_normal());
@@ -158,6 +160,21 @@ TEST(SceneLoader, AGoodSceneKeepsEveryValueItGives) {
   EXPECT_EQ(s.bodies[4].mesh.primitive->resolution, 9);
   EXPECT_EQ(s.bodies[5].mesh.primitive->type, PrimitiveShape::Type::Box);
   EXPECT_EQ(s.bodies[5].mesh.primitive->extents, Eigen::Vector3d(0.1, 0.2, 0.3));
+
+  const BodyDescription& jelly = s.bodies[6];
+  EXPECT_EQ(jelly.model, ModelChoice::Soft);
+  EXPECT_EQ(jelly.material.model, "fixed_corotated");
+  EXPECT_EQ(jelly.material.young, 5e5);
+  EXPECT_EQ(jelly.material.poisson, 0.3);
+  EXPECT_EQ(jelly.mesh_size, 0.05);
+  ASSERT_EQ(jelly.dirichlet.size(), 3u);
+  EXPECT_EQ(jelly.dirichlet[0].select, DirichletDescription::Select::Box);
+  EXPECT_EQ(jelly.dirichlet[0].max, Eigen::Vector3d(7.2, -0.09, 0.2));
+  EXPECT_EQ(jelly.dirichlet[1].select, DirichletDescription::Select::HalfSpace);
+  EXPECT_EQ(jelly.dirichlet[1].normal, Eigen::Vector3d(0, 1, 0));
+  EXPECT_EQ(jelly.dirichlet[1].velocity, Eigen::Vector3d(0, 0.5, 0));
+  EXPECT_EQ(jelly.dirichlet[2].select, DirichletDescription::Select::NodeSet);
+  EXPECT_EQ(jelly.dirichlet[2].node_set, "top");
 }
 
 TEST(SceneLoader, DefaultsAreFilledFromTheSchema) {
@@ -176,7 +193,7 @@ TEST(SceneLoader, DefaultsAreFilledFromTheSchema) {
   EXPECT_FALSE(s.output.frame_dt.has_value());
   ASSERT_EQ(s.bodies.size(), 1u);
   const BodyDescription& b = s.bodies[0];
-  EXPECT_EQ(b.kind, BodyKind::Affine);
+  EXPECT_EQ(b.kind, BodyKind::Dynamic);
   EXPECT_EQ(b.density, 1000.0);
   EXPECT_EQ(b.kappa, 1e8);
   EXPECT_EQ(b.position, Eigen::Vector3d::Zero());
@@ -210,6 +227,21 @@ void expect_same_scene(const SceneDescription& a, const SceneDescription& b) {
     const BodyDescription& y = b.bodies[i];
     EXPECT_EQ(x.name, y.name);
     EXPECT_EQ(x.kind, y.kind);
+    EXPECT_EQ(x.model, y.model);
+    EXPECT_EQ(x.material.model, y.material.model);
+    EXPECT_EQ(x.material.young, y.material.young);
+    EXPECT_EQ(x.material.poisson, y.material.poisson);
+    EXPECT_EQ(x.mesh_size, y.mesh_size);
+    ASSERT_EQ(x.dirichlet.size(), y.dirichlet.size());
+    for (std::size_t j = 0; j < x.dirichlet.size(); ++j) {
+      EXPECT_EQ(x.dirichlet[j].select, y.dirichlet[j].select);
+      EXPECT_EQ(x.dirichlet[j].min, y.dirichlet[j].min);
+      EXPECT_EQ(x.dirichlet[j].max, y.dirichlet[j].max);
+      EXPECT_EQ(x.dirichlet[j].point, y.dirichlet[j].point);
+      EXPECT_EQ(x.dirichlet[j].normal, y.dirichlet[j].normal);
+      EXPECT_EQ(x.dirichlet[j].node_set, y.dirichlet[j].node_set);
+      EXPECT_EQ(x.dirichlet[j].velocity, y.dirichlet[j].velocity);
+    }
     EXPECT_EQ(x.mesh.file, y.mesh.file);
     ASSERT_EQ(x.mesh.primitive.has_value(), y.mesh.primitive.has_value());
     if (x.mesh.primitive) {

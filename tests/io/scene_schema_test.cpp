@@ -1,3 +1,4 @@
+#include <functional>
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -77,16 +78,18 @@ TEST(SceneSchema, ResolvedJsonHasEveryKeyOfTheSchema) {
     const std::string pointer = entry["pointer"];
     if (pointer == "/") continue;
     SCOPED_TRACE(pointer);
-    // Replace the list wildcard by the index of a body that uses the key.
-    bool found = false;
-    for (std::size_t i = 0; i < resolved["bodies"].size() && !found; ++i) {
-      std::string concrete = pointer;
+    // Replace each list wildcard by the index of an element (a body, a Dirichlet condition)
+    // that uses the key.
+    const std::function<bool(const std::string&)> found = [&](const std::string& concrete) {
       const std::size_t star = concrete.find('*');
-      if (star != std::string::npos) concrete.replace(star, 1, std::to_string(i));
-      found = resolved.contains(nlohmann::json::json_pointer(concrete));
-      if (star == std::string::npos) break;
-    }
-    EXPECT_TRUE(found) << pointer << " is missing from resolved_scene_json";
+      if (star == std::string::npos) return resolved.contains(nlohmann::json::json_pointer(concrete));
+      const nlohmann::json::json_pointer list(concrete.substr(0, star - 1));
+      if (!resolved.contains(list)) return false;
+      for (std::size_t i = 0; i < resolved[list].size(); ++i)
+        if (found(std::string(concrete).replace(star, 1, std::to_string(i)))) return true;
+      return false;
+    };
+    EXPECT_TRUE(found(pointer)) << pointer << " is missing from resolved_scene_json";
   }
 }
 

@@ -1,0 +1,11 @@
+#pragma once
+/// @file Numbers in error messages, written so they read back exactly.
+
+#include <string>
+
+namespace stiffsoft::fem {
+
+/// The shortest decimal text that reads back as `value` (e.g. "0.5", "1e-13").
+std::string format_number(double value);
+
+}  // namespace stiffsoft::fem
