@@ -32,7 +32,7 @@ double mean(const std::vector<double>& v) {
 
 struct Row {
   std::string scene;
-  int bodies, triangles;
+  int bodies, dofs, tets, triangles;
   double dt;
   int steps, unconverged;
   double ms_median, iterations, broad_phase_ms, ccd_ms, assembly_ms, solve_ms;
@@ -43,7 +43,8 @@ Row run(const std::filesystem::path& file, double dt, int steps) {
   scene.time.dt = dt;
   Model model = build_model(scene, file);
   resolve_relative_defaults(scene, model);
-  Row row{scene.name, int(model.bodies.size()), int(model.mesh.F.rows()), dt, steps, 0, 0, 0, 0, 0, 0, 0};
+  Row row{scene.name, int(model.bodies.size()), model.num_dofs, int(model.nodes.T.rows()), int(model.mesh.F.rows()),
+          dt, steps, 0, 0, 0, 0, 0, 0, 0};
   Simulation sim(std::move(model), simulation_settings(scene));
   std::vector<double> ms, iterations, bp, ccd, assembly, solve;
   for (int k = 0; k < steps; ++k) {
@@ -68,7 +69,7 @@ Row run(const std::filesystem::path& file, double dt, int steps) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"stiffsoft time-step benchmark on the seed's piles (light, medium, full)"};
+  CLI::App app{"stiffsoft time-step benchmark on the seed's piles (light, medium, full) or any scenes, e.g. the hybrid ones"};
   std::vector<std::string> scenes{"light", "medium", "full"};
   std::vector<double> dts{1.0 / 100, 1.0 / 240, 1.0 / 1000};
   double duration = 0.25;
@@ -85,18 +86,18 @@ int main(int argc, char** argv) {
   if (threads > 0) control = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
 
   std::ofstream out(csv);
-  out << "scene,bodies,triangles,dt,steps,unconverged,ms_per_step_median,newton_iterations_mean,broad_phase_ms,ccd_ms,assembly_ms,solve_ms\n";
-  std::printf("| scene | bodies | triangles | h (s) | steps | ms/step (median) | Newton it./step | broad phase ms | CCD ms | assembly ms | solve ms | unconverged |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  out << "scene,bodies,dofs,tets,triangles,dt,steps,unconverged,ms_per_step_median,newton_iterations_mean,broad_phase_ms,ccd_ms,assembly_ms,solve_ms\n";
+  std::printf("| scene | bodies | DOFs | tets | triangles | h (s) | steps | ms/step (median) | Newton it./step | broad phase ms | CCD ms | assembly ms | solve ms | unconverged |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const std::string& name : scenes)
     for (double dt : dts) {
       const int steps = std::max(1, int(std::lround(duration / dt)));
       const Row r = run(scene_dir / (name + ".json"), dt, steps);
-      std::printf("| %s | %d | %d | 1/%.0f | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %d |\n", r.scene.c_str(),
-                  r.bodies, r.triangles, 1 / r.dt, r.steps, r.ms_median, r.iterations, r.broad_phase_ms, r.ccd_ms,
+      std::printf("| %s | %d | %d | %d | %d | 1/%.0f | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %d |\n",
+                  r.scene.c_str(), r.bodies, r.dofs, r.tets, r.triangles, 1 / r.dt, r.steps, r.ms_median, r.iterations, r.broad_phase_ms, r.ccd_ms,
                   r.assembly_ms, r.solve_ms, r.unconverged);
       std::fflush(stdout);
-      out << r.scene << ',' << r.bodies << ',' << r.triangles << ',' << r.dt << ',' << r.steps << ',' << r.unconverged
+      out << r.scene << ',' << r.bodies << ',' << r.dofs << ',' << r.tets << ',' << r.triangles << ',' << r.dt << ',' << r.steps << ',' << r.unconverged
           << ',' << r.ms_median << ',' << r.iterations << ',' << r.broad_phase_ms << ',' << r.ccd_ms << ','
           << r.assembly_ms << ',' << r.solve_ms << '\n';
     }

@@ -1,11 +1,25 @@
 #include "coupling/model.hpp"
 
+#include <algorithm>
+
 namespace stiffsoft {
 
 int Model::add_block(int size) {
   blocks.push_back({num_dofs, size});
   num_dofs += size;
   return int(blocks.size()) - 1;
+}
+
+abd::Vector12d Model::kinematic_q(int b, double t) const {
+  const BodyModel& body = bodies[b];
+  abd::Vector12d q = body.q0;
+  for (const PathSegment& leg : body.path) {
+    const double dt = std::min(t, leg.duration);
+    q = abd::rigid_motion(q, leg.velocity, leg.angular_velocity, dt);
+    t -= dt;
+    if (t <= 0) return q;
+  }
+  return abd::rigid_motion(q, body.v_after, body.w_after, t);
 }
 
 Eigen::MatrixX3d Model::node_positions(const Eigen::VectorXd& q) const {

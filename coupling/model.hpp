@@ -32,6 +32,13 @@ struct SoftMaterial {
   double poisson = 0.4;                       ///< Poisson ratio ν, in (−1, 0.5)
 };
 
+/// One leg of a kinematic body's prescribed path: constant velocities for a duration.
+struct PathSegment {
+  double duration = 0;                              ///< s, > 0
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  ///< linear velocity of the centre of mass (m/s)
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  ///< world frame (rad/s)
+};
+
 /// A contiguous group of DOFs that Newton's block-sparse Hessian treats as one block.
 struct DofBlock {
   int offset = 0;  ///< first DOF in q
@@ -52,6 +59,9 @@ struct BodyModel {
   abd::Vector12d q0 = abd::Vector12d::Zero();  ///< affine: initial configuration
   Eigen::Vector3d v0 = Eigen::Vector3d::Zero();  ///< initial (Kinematic: prescribed) linear velocity (m/s)
   Eigen::Vector3d w0 = Eigen::Vector3d::Zero();  ///< initial (Kinematic: prescribed) angular velocity, world (rad/s)
+  std::vector<PathSegment> path;           ///< Kinematic: legs followed first, then v_after, w_after for ever
+  Eigen::Vector3d v_after = Eigen::Vector3d::Zero();  ///< Kinematic: linear velocity after the path (m/s)
+  Eigen::Vector3d w_after = Eigen::Vector3d::Zero();  ///< Kinematic: angular velocity after the path (rad/s)
   SoftMaterial material;                   ///< soft: constitutive model
   double density = 0;                      ///< ρ (kg/m³)
   int node_begin = 0, node_end = 0;        ///< soft: its nodes in Model::nodes
@@ -104,6 +114,9 @@ struct Model {
     const BodyModel& body = bodies[b];
     return body.dof < 0 ? body.q0 : abd::Vector12d(q.segment<12>(body.dof));
   }
+  /// The prescribed configuration of kinematic body b at time t (s): its path's legs in
+  /// order, then (v_after, w_after).
+  abd::Vector12d kinematic_q(int b, double t) const;
   /// Positions of all soft nodes, |N|×3 (m): from q, or the rest position for fixed nodes.
   Eigen::MatrixX3d node_positions(const Eigen::VectorXd& q) const;
   /// Surface positions x(q), |V|×3 (m).

@@ -59,9 +59,9 @@ StepStats Simulation::step() {
   const double h = m_settings.h;
   Eigen::VectorXd q_tilde =
       predicted_q(m_settings.integrator, h, m_q, m_qdot, m_q_prev, m_qdot_prev, m_gravity_q);
-  for (const BodyModel& body : m_model.bodies)
-    if (body.dof >= 0 && body.motion == Motion::Kinematic)
-      q_tilde.segment<12>(body.dof) = abd::rigid_motion(body.q0, body.v0, body.w0, m_time + h);
+  for (int b = 0; b < int(m_model.bodies.size()); ++b)
+    if (m_model.bodies[b].dof >= 0 && m_model.bodies[b].motion == Motion::Kinematic)
+      q_tilde.segment<12>(m_model.bodies[b].dof) = m_model.kinematic_q(b, m_time + h);
   const SoftNodes& nodes = m_model.nodes;
   for (int i = 0; i < nodes.size(); ++i)
     if (nodes.motion[i] == Motion::Kinematic)

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "coupling/integrator.hpp"
+#include "coupling/model.hpp"
 #include "meshing/primitive.hpp"
 
 namespace stiffsoft {
@@ -102,6 +103,7 @@ struct BodyDescription {
   Eigen::Vector3d scale = Eigen::Vector3d::Ones();           ///< per-axis scale applied before rotation
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();        ///< initial (or prescribed) linear velocity of the centre of mass (m/s)
   Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();///< initial (or prescribed) angular velocity, world frame (rad/s)
+  std::vector<PathSegment> path;         ///< kinematic: legs of constant velocity followed before velocity/angular_velocity
 };
 
 /// A whole scene, every default filled in.

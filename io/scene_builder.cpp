@@ -97,8 +97,11 @@ SurfaceMesh add_affine_body(Model& model, const BodyDescription& desc, const Sur
   body.kappa = desc.kappa;
   const Eigen::Matrix3d R = rotation(desc.rotation_deg);
   body.q0 = abd::make_q(R * c + desc.position, R);
-  body.v0 = desc.velocity;
-  body.w0 = desc.angular_velocity;
+  body.path = desc.path;
+  body.v_after = desc.velocity;
+  body.w_after = desc.angular_velocity;
+  body.v0 = desc.path.empty() ? desc.velocity : desc.path.front().velocity;
+  body.w0 = desc.path.empty() ? desc.angular_velocity : desc.path.front().angular_velocity;
   model.bodies.push_back(std::move(body));
   append_surface(model, int(model.bodies.size()) - 1, mesh.V.rowwise() - c.transpose(), mesh.F, {}, {});
   return {(mesh.V * R.transpose()).rowwise() + desc.position.transpose(), mesh.F};

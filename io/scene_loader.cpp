@@ -180,6 +180,10 @@ SceneDescription scene_from(const Json& scene, const std::string& name) {
     b.scale = vector3(body.at("scale"));
     b.velocity = vector3(body.at("velocity"));
     b.angular_velocity = vector3(body.at("angular_velocity"));
+    if (body.contains("path"))
+      for (const Json& leg : body["path"])
+        b.path.push_back({leg.at("duration").get<double>(), vector3(leg.at("velocity")),
+                          vector3(leg.at("angular_velocity"))});
     out.bodies.push_back(std::move(b));
   }
   return out;
@@ -315,6 +319,13 @@ nlohmann::json resolved_scene_json(const SceneDescription& scene) {
     b["scale"] = vector_json(body.scale);
     b["velocity"] = vector_json(body.velocity);
     b["angular_velocity"] = vector_json(body.angular_velocity);
+    if (body.kind == BodyKind::Kinematic) {
+      b["path"] = Json::array();
+      for (const PathSegment& leg : body.path)
+        b["path"].push_back({{"duration", leg.duration},
+                             {"velocity", vector_json(leg.velocity)},
+                             {"angular_velocity", vector_json(leg.angular_velocity)}});
+    }
     out["bodies"].push_back(b);
   }
   return nlohmann::json(out);

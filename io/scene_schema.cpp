@@ -134,7 +134,16 @@ constexpr const char* kSchemaText = R"JSON([
   {"pointer": "/bodies/*/velocity", "type": "vector3", "default": [0.0, 0.0, 0.0], "unit": "m/s",
    "doc": "Initial (kinematic: prescribed) linear velocity of the centre of mass."},
   {"pointer": "/bodies/*/angular_velocity", "type": "vector3", "default": [0.0, 0.0, 0.0],
-   "unit": "rad/s", "doc": "Initial (kinematic: prescribed) angular velocity, world frame."}
+   "unit": "rad/s", "doc": "Initial (kinematic: prescribed) angular velocity, world frame."},
+  {"pointer": "/bodies/*/path", "type": "list", "default": [], "when": {"kind": ["kinematic"]},
+   "doc": "Legs of constant velocity a kinematic body follows first, in order; after the last it moves with velocity and angular_velocity (e.g. press, then release)."},
+  {"pointer": "/bodies/*/path/*", "type": "object", "doc": "One leg of a kinematic path."},
+  {"pointer": "/bodies/*/path/*/duration", "type": "number", "required": true, "exclusive_min": 0, "unit": "s",
+   "doc": "How long the leg lasts."},
+  {"pointer": "/bodies/*/path/*/velocity", "type": "vector3", "default": [0.0, 0.0, 0.0], "unit": "m/s",
+   "doc": "Linear velocity of the centre of mass during the leg."},
+  {"pointer": "/bodies/*/path/*/angular_velocity", "type": "vector3", "default": [0.0, 0.0, 0.0], "unit": "rad/s",
+   "doc": "Angular velocity (world frame) during the leg."}
 ])JSON";
 
 using Json = nlohmann::ordered_json;

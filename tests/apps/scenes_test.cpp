@@ -43,7 +43,10 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene,
                                            SceneCase{"house_of_cards", 40}, SceneCase{"incline_stick", 40},
                                            SceneCase{"incline_slide", 40}, SceneCase{"wrecking_ball", 40},
                                            SceneCase{"thin_wall", 20}, SceneCase{"light", 40},
-                                           SceneCase{"medium", 10}, SceneCase{"full", 3}),
+                                           SceneCase{"medium", 10}, SceneCase{"full", 3},
+                                           SceneCase{"soft_ball_on_boxes", 60}, SceneCase{"cube_on_mattress", 40},
+                                           SceneCase{"beam_with_blocks", 30}, SceneCase{"mixed_pile", 20},
+                                           SceneCase{"squash_recover", 20}),
                          [](const auto& info) { return info.param.name; });
 
 namespace {

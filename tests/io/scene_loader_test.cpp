@@ -26,7 +26,7 @@ const BrokenCase kBroken[] = {
     {"wrong_type_dt.json", "time.dt: must be a number (got string \"0.01\")"},
     {"negative_density.json", "bodies[3].density: must be > 0 (got -2)"},
     {"unknown_key.json", "bodies[1].frobnicate: unknown key (allowed: name, kind, model, mesh, density, material, "
-                         "mesh_size, dirichlet, kappa, position, rotation_deg, scale, velocity, angular_velocity)"},
+                         "mesh_size, dirichlet, kappa, position, rotation_deg, scale, velocity, angular_velocity, path)"},
     {"poisson_half.json", "bodies[0].material.poisson: must be < 0.5 (got 0.5)"},
     {"material_on_affine_body.json", "bodies[0].material: only allowed when model is soft or auto"},
     {"unknown_top_level_key.json", "gravty: unknown key (allowed: description, time, gravity,"},
@@ -151,6 +151,10 @@ TEST(SceneLoader, AGoodSceneKeepsEveryValueItGives) {
   EXPECT_EQ(ring.mesh.primitive->minor_radius, 0.05);
   EXPECT_EQ(ring.mesh.primitive->resolution, 12);
   EXPECT_EQ(ring.angular_velocity, Eigen::Vector3d(0, 2, 0));
+  ASSERT_EQ(ring.path.size(), 2u);
+  EXPECT_EQ(ring.path[0].duration, 0.1);
+  EXPECT_EQ(ring.path[0].velocity, Eigen::Vector3d(0, -1, 0));
+  EXPECT_EQ(ring.path[1].angular_velocity, Eigen::Vector3d(1, 0, 0));
 
   EXPECT_EQ(s.bodies[3].mesh.primitive->type, PrimitiveShape::Type::Sphere);
   EXPECT_EQ(s.bodies[3].mesh.primitive->radius, 0.2);
@@ -259,6 +263,12 @@ void expect_same_scene(const SceneDescription& a, const SceneDescription& b) {
     EXPECT_EQ(x.scale, y.scale);
     EXPECT_EQ(x.velocity, y.velocity);
     EXPECT_EQ(x.angular_velocity, y.angular_velocity);
+    ASSERT_EQ(x.path.size(), y.path.size());
+    for (std::size_t j = 0; j < x.path.size(); ++j) {
+      EXPECT_EQ(x.path[j].duration, y.path[j].duration);
+      EXPECT_EQ(x.path[j].velocity, y.path[j].velocity);
+      EXPECT_EQ(x.path[j].angular_velocity, y.path[j].angular_velocity);
+    }
   }
 }
 
