@@ -15,7 +15,9 @@ function(stiffsoft_tests name)
   endif()
   add_executable(${name}_tests ${sources})
   target_link_libraries(${name}_tests PRIVATE ${ARGN} stiffsoft_test_support GTest::gtest_main)
-  add_dependencies(${name}_tests stiffsoft)
+  if(name STREQUAL "apps")
+    add_dependencies(${name}_tests stiffsoft)  # its tests run the binary
+  endif()
   target_compile_definitions(${name}_tests PRIVATE
     STIFFSOFT_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     STIFFSOFT_SHARED_DIR="${PROJECT_SOURCE_DIR}/../shared"

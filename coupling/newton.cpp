@@ -3,6 +3,8 @@
 #include <cmath>
 #include <limits>
 
+#include "coupling/linear_solver/forcing_term.hpp"
+
 namespace stiffsoft {
 
 namespace {
@@ -59,6 +61,12 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
   double E = total_energy(terms, {q, x});
   std::vector<std::int64_t> pattern;
   Eigen::VectorXd g(q.size()), p(q.size()), q_trial(q.size());
+  double eta = 0, g_norm_previous = 0;  // Eisenstat–Walker state
+  if (solver.is_iterative()) {
+    std::vector<int> sizes;
+    for (const DofBlock& b : model.blocks) sizes.push_back(b.size);
+    solver.set_block_sizes(sizes);
+  }
 
   for (; report.iterations < settings.max_iterations; ++report.iterations) {
     const Configuration c{q, x};
@@ -67,8 +75,22 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
       ScopedTimer timer(times.assembly);
       for (const EnergyTerm* t : terms) t->add_gradient(c, g);
     }
-    if (!newton_direction(model, terms, c, g, solver, pattern, times, p)) {
-      report.failure = "the linear solve failed even with a regularised Hessian";
+    if (solver.is_iterative()) {
+      const double g_norm = g.norm();
+      eta = forcing_term(g_norm, g_norm_previous, eta);
+      g_norm_previous = g_norm;
+      solver.set_relative_tolerance(eta);
+    }
+    const bool solved = newton_direction(model, terms, c, g, solver, pattern, times, p);
+    const LinearSolveReport& linear = solver.last_report();
+    report.linear_iterations += linear.iterations;
+    report.linear_fallbacks += linear.fallback_used;
+    if ((linear.fallback_used || !solved) && report.linear_failure.empty())
+      report.linear_failure = "iteration " + std::to_string(report.iterations + 1) + ": " +
+                              (linear.fallback_used ? linear.primary_failure + ", solved by the fallback"
+                                                    : std::string(to_string(linear.status)) + " " + linear.reason);
+    if (!solved) {
+      report.failure = "the linear solve failed even with a regularised Hessian (" + report.linear_failure + ")";
       break;
     }
     const Eigen::MatrixX3d dx = model.surface_step(p);

@@ -28,11 +28,16 @@ struct NewtonReport {
   double smallest_ccd_step = 1;  ///< smallest α bound returned by CCD
   double energy = 0;             ///< E at the result
   double last_step_speed = 0;    ///< max surface step / h of the last direction (m/s)
+  int linear_iterations = 0;     ///< Krylov iterations summed over the linear solves (0 for direct solvers)
+  int linear_fallbacks = 0;      ///< linear solves whose primary method failed and a fallback solved
+  std::string linear_failure;    ///< the first linear-solve failure ("iteration k: …"), empty if none
   std::string failure;           ///< why it stopped without converging
 };
 
 /// Minimises Σ terms over q, starting from (and overwriting) q. Terms get update() at every
-/// configuration they are evaluated at.
+/// configuration they are evaluated at. With an iterative linear solver the Krylov tolerance
+/// of each solve follows Eisenstat–Walker's forcing terms (linear_solver/forcing_term.hpp);
+/// the stopping rule stays the step-size rule above.
 NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>& terms,
                              Eigen::VectorXd& q, LinearSolver& solver, const NewtonSettings& settings,
                              PhaseTimes& times);
