@@ -20,13 +20,14 @@ namespace stiffsoft {
 namespace {
 
 const std::vector<std::string> kStatsColumns{
-    "step", "time", "newton_iterations", "line_search_steps", "smallest_ccd_step", "converged",
+    "step", "time", "newton_iterations", "linear_iterations", "line_search_steps", "smallest_ccd_step", "converged",
     "contacts", "smallest_distance", "kinetic_energy", "potential_energy", "momentum_x", "momentum_y",
     "momentum_z", "orthogonality_error", "elastic_energy", "inverted_tets", "kappa", "seconds_broad_phase", "seconds_ccd",
     "seconds_assembly", "seconds_solve", "seconds_step"};
 
 std::vector<double> stats_row(const StepStats& s) {
-  return {double(s.step), s.time, double(s.newton.iterations), double(s.newton.line_search_steps),
+  return {double(s.step), s.time, double(s.newton.iterations), double(s.newton.linear_iterations),
+          double(s.newton.line_search_steps),
           s.newton.smallest_ccd_step, s.newton.converged ? 1.0 : 0.0, double(s.contacts),
           s.smallest_distance, s.kinetic_energy, s.potential_energy, s.linear_momentum.x(),
           s.linear_momentum.y(), s.linear_momentum.z(), s.orthogonality_error, s.elastic_energy,
@@ -126,6 +127,9 @@ int run_scene(const RunOptions& options) {
   for (int k = 0; k < total; ++k) {
     const StepStats s = sim.step();
     stats.add_row(stats_row(s));
+    if (!s.newton.linear_failure.empty())
+      spdlog::warn("step {} (t = {:.4f} s): linear solver ({}) failed at {}", s.step, s.time, settings.linear_solver,
+                   s.newton.linear_failure);
     if (!s.newton.converged) {
       ++failed;
       spdlog::warn("step {} (t = {:.4f} s): Newton did not converge after {} iterations: {} (last step speed {:.3g} m/s, tolerance {:.3g} m/s)",
