@@ -11,15 +11,23 @@ AutoSolver::AutoSolver() = default;
 AutoSolver::~AutoSolver() = default;
 
 void AutoSolver::analyze_pattern(const Eigen::SparseMatrix<double>& upper) {
-  const bool krylov = upper.rows() >= kAutoKrylovRows;
-  if (!m_backend || krylov != m_krylov) {
-    m_krylov = krylov;
-    if (krylov)
-      m_backend = std::make_unique<PetscSolver>(default_petsc_method());
-    else
-      m_backend = std::make_unique<CholmodSolver>();
+  bool krylov = upper.rows() >= kAutoKrylovRows;
+  std::unique_ptr<CholmodSolver> cholmod;
+  if (!krylov) {
+    cholmod = std::make_unique<CholmodSolver>();
+    cholmod->analyze_pattern(upper);
+    krylov = cholmod->factor_flops() > kAutoCholmodFlops;
+  }
+  if (!krylov) {
+    m_backend = std::move(cholmod);  // analysed already
+    m_krylov = false;
+    return;
+  }
+  if (!m_backend || !m_krylov) {
+    m_backend = std::make_unique<PetscSolver>(default_petsc_method());
     if (m_eta > 0) m_backend->set_relative_tolerance(m_eta);
     if (!m_block_sizes.empty()) m_backend->set_block_sizes(m_block_sizes);
+    m_krylov = true;
   }
   m_backend->analyze_pattern(upper);
 }

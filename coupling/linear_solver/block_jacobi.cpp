@@ -11,7 +11,8 @@ BlockJacobi::BlockJacobi(const std::vector<int>& block_sizes, int row_begin, int
   int row = 0;
   std::size_t pool = 0;
   for (const int s : block_sizes) {
-    if (s <= 0) throw std::invalid_argument("BlockJacobi: block size " + std::to_string(s) + "; expected > 0");
+    if (s <= 0)
+      throw std::invalid_argument("BlockJacobi: block size " + std::to_string(s) + "; expected > 0");
     const bool starts_inside = row >= row_begin && row < row_end;
     const bool ends_inside = row + s > row_begin && row + s <= row_end;
     if (starts_inside != ends_inside)
@@ -48,16 +49,35 @@ bool BlockJacobi::compute(const Eigen::SparseMatrix<double>& upper) {
       m_failed_row = o;
       return false;
     }
-    Eigen::Map<Eigen::MatrixXd>(m_pool.data() + m_pool_offsets[b], s, s) = llt.solve(Eigen::MatrixXd::Identity(s, s));
+    Eigen::Map<Eigen::MatrixXd>(m_pool.data() + m_pool_offsets[b], s, s) =
+        llt.solve(Eigen::MatrixXd::Identity(s, s));
   }
   return true;
 }
 
+namespace {
+/// y = D⁻¹ x for one block of compile-time size N.
+template <int N>
+void apply_block(const double* inverse, const double* x, double* y) {
+  Eigen::Map<Eigen::Matrix<double, N, 1>>(y).noalias() =
+      Eigen::Map<const Eigen::Matrix<double, N, N>>(inverse) *
+      Eigen::Map<const Eigen::Matrix<double, N, 1>>(x);
+}
+}  // namespace
+
 void BlockJacobi::apply(const double* x, double* y) const {
   for (std::size_t b = 0; b < m_offsets.size(); ++b) {
     const int o = m_offsets[b] - m_row_begin, s = m_sizes[b];
-    const Eigen::Map<const Eigen::MatrixXd> inverse(m_pool.data() + m_pool_offsets[b], s, s);
-    Eigen::Map<Eigen::VectorXd>(y + o, s).noalias() = inverse * Eigen::Map<const Eigen::VectorXd>(x + o, s);
+    const double* inverse = m_pool.data() + m_pool_offsets[b];
+    // Fixed sizes for the two block kinds: several times faster than a dynamic product.
+    if (s == 12) {
+      apply_block<12>(inverse, x + o, y + o);
+    } else if (s == 3) {
+      apply_block<3>(inverse, x + o, y + o);
+    } else {
+      Eigen::Map<Eigen::VectorXd>(y + o, s).noalias() =
+          Eigen::Map<const Eigen::MatrixXd>(inverse, s, s) * Eigen::Map<const Eigen::VectorXd>(x + o, s);
+    }
   }
 }
 

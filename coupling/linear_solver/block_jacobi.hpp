@@ -27,7 +27,7 @@ class BlockJacobi {
  private:
   std::vector<int> m_offsets, m_sizes;  // owned blocks: first row (global), size
   std::vector<std::size_t> m_pool_offsets;
-  std::vector<double> m_pool;           // the inverses, column-major, one after the other
+  std::vector<double> m_pool;  // the inverses, column-major, one after the other
   int m_row_begin = 0, m_row_end = 0;
   int m_failed_row = -1;
 };

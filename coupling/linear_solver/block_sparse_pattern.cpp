@@ -32,7 +32,8 @@ BlockSparsePattern::BlockSparsePattern(const Eigen::SparseMatrix<double>& upper,
   m_row_end = row_end < 0 ? m_num_block_rows : row_end;
   if (m_row_begin < 0 || m_row_begin > m_row_end || m_row_end > m_num_block_rows)
     throw std::invalid_argument("BlockSparsePattern: block rows [" + std::to_string(row_begin) + ", " +
-                                std::to_string(row_end) + ") outside [0, " + std::to_string(m_num_block_rows) + ")");
+                                std::to_string(row_end) + ") outside [0, " +
+                                std::to_string(m_num_block_rows) + ")");
   const int* outer = upper.outerIndexPtr();
   const int* inner = upper.innerIndexPtr();
   m_outer.assign(outer, outer + n + 1);
@@ -49,7 +50,8 @@ BlockSparsePattern::BlockSparsePattern(const Eigen::SparseMatrix<double>& upper,
     for (int k = outer[c]; k < outer[c + 1]; ++k) {
       const int r = inner[k];
       if (r > c)
-        throw std::invalid_argument("BlockSparsePattern: entry (" + std::to_string(r) + ", " + std::to_string(c) +
+        throw std::invalid_argument("BlockSparsePattern: entry (" + std::to_string(r) + ", " +
+                                    std::to_string(c) +
                                     ") lies below the diagonal; expected the upper triangle only");
       const int I = r / 3;
       if (seen[I] == J) continue;
@@ -91,9 +93,11 @@ BlockSparsePattern::BlockSparsePattern(const Eigen::SparseMatrix<double>& upper,
   }
 }
 
-void BlockSparsePattern::gather_values(const Eigen::SparseMatrix<double>& upper, std::vector<double>& values) const {
+void BlockSparsePattern::gather_values(const Eigen::SparseMatrix<double>& upper,
+                                       std::vector<double>& values) const {
   if (!same_pattern(upper))
-    throw std::invalid_argument("BlockSparsePattern::gather_values: the matrix's pattern differs from the analysed one");
+    throw std::invalid_argument(
+        "BlockSparsePattern::gather_values: the matrix's pattern differs from the analysed one");
   values.assign(num_values(), 0.0);
   const double* v = upper.valuePtr();
   const std::int64_t nnz = upper.nonZeros();
@@ -141,7 +145,8 @@ std::vector<int> infer_block_sizes(const Eigen::SparseMatrix<double>& upper) {
 }
 
 std::vector<int> split_rows(const std::vector<int>& block_sizes, int parts) {
-  if (parts < 1) throw std::invalid_argument("split_rows: parts = " + std::to_string(parts) + "; expected ≥ 1");
+  if (parts < 1)
+    throw std::invalid_argument("split_rows: parts = " + std::to_string(parts) + "; expected ≥ 1");
   const std::int64_t n = std::accumulate(block_sizes.begin(), block_sizes.end(), std::int64_t(0));
   std::vector<int> bounds{0};
   std::int64_t row = 0;

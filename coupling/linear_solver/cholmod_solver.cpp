@@ -14,6 +14,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 struct CholmodSolver::Impl {
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper> llt;
+  double flops = 0, nonzeros = 0;     // predicted by the last analysis
   Eigen::SparseMatrix<double> upper;  // the factorised H, for the residual
   bool factorized = false;
 };
@@ -23,7 +24,13 @@ CholmodSolver::~CholmodSolver() = default;
 
 void CholmodSolver::analyze_pattern(const Eigen::SparseMatrix<double>& upper) {
   m_impl->llt.analyzePattern(upper);
+  m_impl->flops = m_impl->llt.cholmod().fl;
+  m_impl->nonzeros = m_impl->llt.cholmod().lnz;
 }
+
+double CholmodSolver::factor_flops() const { return m_impl->flops; }
+
+double CholmodSolver::factor_nonzeros() const { return m_impl->nonzeros; }
 
 bool CholmodSolver::factorize(const Eigen::SparseMatrix<double>& upper) {
   const auto start = std::chrono::steady_clock::now();

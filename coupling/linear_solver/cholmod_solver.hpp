@@ -23,6 +23,11 @@ class CholmodSolver final : public LinearSolver {
   Eigen::VectorXd solve(const Eigen::VectorXd& b) override;
   /// See LinearSolver.
   std::string name() const override { return "cholmod"; }
+  /// Floating-point operations of the numeric factorisation, as CHOLMOD's symbolic analysis
+  /// predicts them (cholmod_common::fl); 0 before analyze_pattern().
+  double factor_flops() const;
+  /// Stored entries of the factor L the analysis predicts (cholmod_common::lnz).
+  double factor_nonzeros() const;
 
  private:
   struct Impl;

@@ -13,12 +13,14 @@ namespace stiffsoft {
 /// Parameters of the forcing terms; defaults are Eisenstat–Walker's choice 2 (γ = 0.9,
 /// α = (1+√5)/2, as PETSc's SNES uses) with η_max = 0.5 and η_min = 1e-8.
 struct ForcingTermSettings {
-  double eta_initial = 0.5;   ///< η_0, for the first Newton iteration of a minimisation
-  double gamma = 0.9;         ///< γ ∈ (0, 1]
-  double alpha = 1.6180339887498949;  ///< α ∈ (1, 2]; (1+√5)/2 gives q-superlinear convergence order α
-  double eta_max = 0.5;       ///< upper bound; η ≥ 1 would allow p = 0. 0.5 rather than EW's 0.9: a
-                              ///< looser direction costs more line-search/CCD work than it saves here
-  double eta_min = 1e-8;      ///< lower bound: below it a Krylov solve only chases round-off
+  double eta_initial = 0.5;           ///< η_0, for the first Newton iteration of a minimisation
+  double gamma = 0.9;                 ///< γ ∈ (0, 1]
+  double alpha = 1.6180339887498949;  ///< α ∈ (1, 2]; local convergence then has q-order α
+  /// Upper bound; η ≥ 1 would allow p = 0. 0.5 rather than Eisenstat–Walker's 0.9 as a
+  /// conservative start (every direction also costs a CCD pass and a line search); not yet
+  /// tuned by measurement with Newton.
+  double eta_max = 0.5;
+  double eta_min = 1e-8;             ///< lower bound: below it a Krylov solve only chases round-off
   double safeguard_threshold = 0.1;  ///< apply the safeguard when γ η_{k−1}^α exceeds this
 };
 
@@ -43,4 +45,3 @@ inline double forcing_term(double g_norm, double g_norm_previous, double eta_pre
 }
 
 }  // namespace stiffsoft
-

@@ -60,6 +60,10 @@ class LinearSolver {
 /// PETSc backends start PETSc (ensure_petsc_initialized()) if main has not.
 std::unique_ptr<LinearSolver> make_linear_solver(const std::string& name);
 
+/// Throws std::invalid_argument (the same message as make_linear_solver()) when `name` is not
+/// a backend name; creates nothing and does not start PETSc. For the scene loader's checks.
+void check_linear_solver_name(const std::string& name);
+
 /// Makes make_linear_solver(name) return factory(); replaces an earlier registration of the
 /// same name (built-in names cannot be replaced). For tools that wrap a backend (e.g. the
 /// benchmark's recorder). Not thread-safe: register before creating solvers.

@@ -29,8 +29,8 @@ bool has_optional_value(std::string_view option) {
 
 /// A value a flag-like PETSc option accepts: a boolean or a viewer specification.
 bool looks_like_flag_value(std::string_view value) {
-  constexpr std::array<std::string_view, 12> words{"true", "false", "yes", "no", "0", "1",
-                                                   "ascii", "draw", "binary", "stdout", "stderr", "hdf5"};
+  constexpr std::array<std::string_view, 12> words{"true",  "false", "yes",    "no",     "0",      "1",
+                                                   "ascii", "draw",  "binary", "stdout", "stderr", "hdf5"};
   for (std::string_view w : words)
     if (value == w) return true;
   return value.find(':') != std::string_view::npos;
@@ -39,8 +39,8 @@ bool looks_like_flag_value(std::string_view value) {
 }  // namespace
 
 bool is_petsc_option(std::string_view a) {
-  constexpr std::array<std::string_view, 9> prefixes{"-ksp_", "-pc_",     "-mat_",    "-vec_", "-log_",
-                                                      "-options_", "-malloc", "-sub_", "-info"};
+  constexpr std::array<std::string_view, 9> prefixes{"-ksp_",     "-pc_",    "-mat_", "-vec_", "-log_",
+                                                     "-options_", "-malloc", "-sub_", "-info"};
   if (a.size() < 2 || a[0] != '-' || a[1] == '-') return false;
   for (std::string_view p : prefixes)
     if (starts_with(a, p)) return true;
@@ -63,7 +63,8 @@ SplitCommandLine split_petsc_arguments(int argc, const char* const* argv) {
     if (i + 1 >= argc) continue;
     const std::string_view next = argv[i + 1];
     const bool value_shaped = !starts_with(next, "-") || is_number(next);
-    if (value_shaped && (!has_optional_value(a) || looks_like_flag_value(next))) split.petsc.emplace_back(argv[++i]);
+    if (value_shaped && (!has_optional_value(a) || looks_like_flag_value(next)))
+      split.petsc.emplace_back(argv[++i]);
   }
   return split;
 }

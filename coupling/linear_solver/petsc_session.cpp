@@ -40,7 +40,8 @@ void PetscSession::start() {
   m_program_pointers = pointers(m_program);
   PetscBool finalized = PETSC_FALSE;
   PetscFinalized(&finalized);
-  if (finalized) throw std::runtime_error("PetscSession: PETSc was already finalised in this process; it cannot restart");
+  if (finalized)
+    throw std::runtime_error("PetscSession: PETSc was already finalised in this process; it cannot restart");
   int argc = int(m_petsc.size());
   char** argv = m_petsc_pointers.data();
   if (running()) {

@@ -21,18 +21,18 @@ enum class KrylovFallback {
 /// Settings of the PETSc backend; PETSc's options database (-ksp_type, -pc_type, -ksp_rtol,
 /// -ksp_max_it, -ksp_monitor, -pc_gamg_…, -log_view) applies on top of them.
 struct PetscSolverSettings {
-  std::string ksp_type = "cg";     ///< Krylov method: "cg", "minres" or "gmres"
-  std::string pc_type = "vpbjacobi";  ///< preconditioner: "none", "jacobi", "pbjacobi" (3×3 blocks),
-                                      ///< "vpbjacobi" (DOF blocks: 12×12 / 3×3), "icc", "gamg", "hypre"
-  double relative_tolerance = 1e-8;   ///< η: stop when ‖b − H p‖ ≤ η ‖b‖ (set_relative_tolerance() changes it)
-  int max_iterations = 1000;          ///< Krylov iteration cap per solve
-  std::string matrix_type;            ///< "baij", "sbaij" or "aij" (all with block size 3); empty: chosen
-                                      ///< per PC (see default_matrix_type()); -mat_type overrides
+  std::string ksp_type = "cg";  ///< Krylov method: "cg", "minres" or "gmres"
+  std::string pc_type = "icc";  ///< preconditioner: "none", "jacobi", "pbjacobi" (3×3 blocks),
+                                ///< "vpbjacobi" (DOF blocks: 12×12 / 3×3), "icc", "gamg", "hypre"
+  double relative_tolerance = 1e-8;  ///< η: stop when ‖b − H p‖ ≤ η ‖b‖ (set_relative_tolerance() changes it)
+  int max_iterations = 1000;  ///< Krylov iteration cap per solve
+  std::string matrix_type;    ///< "baij", "sbaij" or "aij" (all with block size 3); empty: chosen
+                              ///< per PC (see default_matrix_type()); -mat_type overrides
   KrylovFallback fallback = KrylovFallback::Cholmod;  ///< on a Krylov failure
-  bool distributed = true;            ///< PETSC_COMM_WORLD (MPIBAIJ when it has > 1 rank); false: PETSC_COMM_SELF
-  bool gamg_translations = true;      ///< GAMG: near-null space = the 3 translations (the p part of a
-                                      ///< 12-block, every 3-block) instead of PETSc's per-component constants
-  bool use_options_database = true;   ///< apply the PETSc options database (KSPSetFromOptions)
+  bool distributed = true;        ///< PETSC_COMM_WORLD (MPIBAIJ when it has > 1 rank); false: PETSC_COMM_SELF
+  bool gamg_translations = true;  ///< GAMG: near-null space = the 3 translations (the p part of a
+                                  ///< 12-block, every 3-block) instead of PETSc's per-component constants
+  bool use_options_database = true;  ///< apply the PETSc options database (KSPSetFromOptions)
 };
 
 /// PETSc KSP solver of H p = b with H symmetric positive definite.
@@ -42,7 +42,7 @@ struct PetscSolverSettings {
 /// and sets up the preconditioner; solve() runs the Krylov method with a zero initial guess
 /// and returns p on every rank. The reported residual is the true ‖b − H p‖/‖b‖; when the
 /// Krylov stopping test (e.g. MINRES's preconditioned norm) met the tolerance but the true
-/// residual did not, the solve continues from p with a tighter tolerance (up to 3 passes).
+/// residual did not, the solve continues from p with a tighter tolerance (up to 4 passes).
 ///
 /// Under MPI every rank passes the same H and b (each assembles the whole system); rank r
 /// sets only its rows (a contiguous range of whole DOF blocks), the solve is distributed, and
@@ -80,6 +80,10 @@ class PetscSolver final : public LinearSolver {
   struct Impl;
   std::unique_ptr<Impl> m_impl;
 };
+
+/// Throws std::invalid_argument for an unknown KSP or PC name, "hypre" without hypre in this
+/// PETSc build, a tolerance outside (0, 1) or an iteration cap below 1; starts nothing.
+void check_petsc_method(const PetscSolverSettings& settings);
 
 /// The PETSc matrix type a preconditioner works best with (measured; see the .cpp).
 std::string default_matrix_type(const std::string& pc_type);

@@ -5,7 +5,9 @@ namespace stiffsoft {
 RecordingSolver::RecordingSolver(std::unique_ptr<LinearSolver> inner, Sink sink)
     : m_inner(std::move(inner)), m_sink(std::move(sink)) {}
 
-void RecordingSolver::analyze_pattern(const Eigen::SparseMatrix<double>& upper) { m_inner->analyze_pattern(upper); }
+void RecordingSolver::analyze_pattern(const Eigen::SparseMatrix<double>& upper) {
+  m_inner->analyze_pattern(upper);
+}
 
 bool RecordingSolver::factorize(const Eigen::SparseMatrix<double>& upper) {
   m_upper = upper;

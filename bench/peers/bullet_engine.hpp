@@ -1,0 +1,67 @@
+#pragma once
+/// @file Bullet (btDiscreteDynamicsWorld) behind the peer benchmark's Engine interface.
+///
+/// Shapes: a dynamic convex body is a btConvexHullShape of its vertices; a dynamic non-convex
+/// body (a torus, a ring) is a btGImpactMeshShape of its triangles; a fixed box is a btBoxShape;
+/// any other fixed body is a btConvexHullShape (convex) or a btBvhTriangleMeshShape. Every
+/// hull, GImpact and triangle-mesh shape gets the collision margin `margin` (Bullet adds it
+/// around those shapes, its default is 0.04 m, as large as the bodies); a btBoxShape keeps
+/// its margin inside its extents. Bodies sit in their principal-axes frames (Bullet takes a
+/// diagonal inertia); friction is √μ per body because Bullet multiplies the two bodies'
+/// coefficients; restitution 0 (default). Everything else is Bullet's default:
+/// btSequentialImpulseConstraintSolver, 10 iterations, ERP 0.2, split impulse, no CCD,
+/// deactivation (sleeping) on, single precision.
+
+#include <LinearMath/btScalar.h>
+
+#include <memory>
+#include <vector>
+
+#include "peers/engine.hpp"
+#include "peers/peer_scene.hpp"
+
+class btDefaultCollisionConfiguration;
+class btCollisionDispatcher;
+class btBroadphaseInterface;
+class btSequentialImpulseConstraintSolver;
+class btDiscreteDynamicsWorld;
+class btCollisionShape;
+class btRigidBody;
+class btStridingMeshInterface;
+
+namespace stiffsoft::peers {
+
+/// Bullet's world for one scene.
+class BulletEngine final : public Engine {
+ public:
+  /// Builds the world; `margin` is the collision margin of hull and mesh shapes (m).
+  BulletEngine(const PeerScene& scene, double margin);
+  ~BulletEngine() override;
+  std::string name() const override { return "bullet"; }
+  std::string settings() const override;
+  void step() override;
+  std::vector<Penetration> penetrations() override;
+  void finish_probe() override;
+  Pose pose(int b) const override;
+  Twist twist(int b) const override;
+  Eigen::MatrixX3d collision_vertices(int b) const override;
+
+ private:
+  double m_h;
+  double m_margin;
+  std::unique_ptr<btDefaultCollisionConfiguration> m_configuration;
+  std::unique_ptr<btCollisionDispatcher> m_dispatcher;
+  std::unique_ptr<btBroadphaseInterface> m_broadphase;
+  std::unique_ptr<btSequentialImpulseConstraintSolver> m_solver;
+  std::unique_ptr<btDiscreteDynamicsWorld> m_world;
+  std::vector<std::unique_ptr<btCollisionShape>> m_shapes;
+  std::vector<std::unique_ptr<btStridingMeshInterface>> m_meshes;
+  std::vector<std::vector<btScalar>> m_vertex_storage;
+  std::vector<std::vector<int>> m_index_storage;
+  std::vector<std::unique_ptr<btRigidBody>> m_bodies;     ///< one per scene body
+  std::vector<Eigen::Matrix3d> m_principal;               ///< Q: x̄ = Q x_principal
+  std::vector<double> m_inflation;                        ///< margin each shape adds outside the body's surface (m)
+  int m_gimpact = 0, m_hulls = 0, m_boxes = 0, m_trimeshes = 0;
+};
+
+}  // namespace stiffsoft::peers

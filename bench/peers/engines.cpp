@@ -1,0 +1,54 @@
+#include "peers/engines.hpp"
+
+#include <stdexcept>
+
+#include "peers/stiffsoft_engine.hpp"
+#ifdef STIFFSOFT_WITH_BULLET
+#include "peers/bullet_engine.hpp"
+#endif
+#ifdef STIFFSOFT_WITH_MUJOCO
+#include "peers/mujoco_engine.hpp"
+#endif
+
+namespace stiffsoft::peers {
+
+std::vector<std::string> available_engines() {
+  std::vector<std::string> names{"stiffsoft"};
+#ifdef STIFFSOFT_WITH_BULLET
+  names.push_back("bullet");
+#endif
+#ifdef STIFFSOFT_WITH_MUJOCO
+  names.push_back("mujoco");
+#endif
+  return names;
+}
+
+std::unique_ptr<Engine> make_engine(const std::string& name, const PeerScene& scene, const EngineOptions& options) {
+  if (name == "stiffsoft") return std::make_unique<StiffsoftEngine>(scene);
+#ifdef STIFFSOFT_WITH_BULLET
+  if (name == "bullet")
+    return std::make_unique<BulletEngine>(scene, options.bullet_margin > 0 ? options.bullet_margin : 0.5 * scene.dhat);
+#endif
+#ifdef STIFFSOFT_WITH_MUJOCO
+  if (name == "mujoco") {
+    int geoms = 0;
+    for (const PeerBody& body : scene.bodies)
+      if (!body.fixed) geoms += body.torus ? body.torus->n : 1;
+    MjcfSizes sizes;
+    sizes.nconmax = options.mujoco_nconmax > 0 ? options.mujoco_nconmax : 4 * geoms + 200;
+    sizes.njmax = options.mujoco_njmax > 0 ? options.mujoco_njmax : 4 * sizes.nconmax;
+    return std::make_unique<MujocoEngine>(scene, sizes);
+  }
+#endif
+  (void)options;
+  throw std::invalid_argument("engine '" + name + "' is not available in this build (available: stiffsoft" +
+#ifdef STIFFSOFT_WITH_BULLET
+                              std::string(", bullet") +
+#endif
+#ifdef STIFFSOFT_WITH_MUJOCO
+                              std::string(", mujoco") +
+#endif
+                              ")");
+}
+
+}  // namespace stiffsoft::peers

@@ -1,0 +1,27 @@
+#pragma once
+/// @file Which engines this build has, and making one for a scene.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "peers/engine.hpp"
+#include "peers/peer_scene.hpp"
+
+namespace stiffsoft::peers {
+
+/// Engine settings the benchmark may change from their defaults.
+struct EngineOptions {
+  double bullet_margin = 0;  ///< Bullet collision margin of hulls and meshes (m); ≤ 0: half the scene's d̂
+  int mujoco_nconmax = 0;    ///< MuJoCo contact buffer; ≤ 0: 4 per dynamic geom + 200
+  int mujoco_njmax = 0;      ///< MuJoCo constraint rows; ≤ 0: 4 per contact (pyramidal cone, condim 3)
+};
+
+/// "stiffsoft" and the peers compiled in ("bullet", "mujoco").
+std::vector<std::string> available_engines();
+
+/// A fresh engine of that name on the scene at t = 0; throws std::invalid_argument for a name
+/// that is not available.
+std::unique_ptr<Engine> make_engine(const std::string& name, const PeerScene& scene, const EngineOptions& options);
+
+}  // namespace stiffsoft::peers

@@ -1,0 +1,564 @@
+/// Linear-solver layer: the 3×3-block layout of the assembled Hessian, every backend (CHOLMOD,
+/// PETSc KSP with each preconditioner) on the same SPD Newton systems from real scenes (stored
+/// under tests/coupling/data/linear_systems) to the requested residual, pattern reuse, failure
+/// reports on indefinite matrices and iteration caps, the CHOLMOD fallback, PETSc's options
+/// database, Eisenstat–Walker forcing terms, the command-line split, and an `mpirun -n 2` run
+/// that must agree with the serial solve.
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <set>
+
+#include "coupling/linear_solver/block_jacobi.hpp"
+#include "coupling/linear_solver/block_sparse_pattern.hpp"
+#include "coupling/linear_solver/cholmod_solver.hpp"
+#include "coupling/linear_solver/forcing_term.hpp"
+#include "coupling/linear_solver/linear_system_io.hpp"
+#include "coupling/linear_solver/petsc_arguments.hpp"
+#include "coupling/linear_solver/petsc_session.hpp"
+#include "coupling/linear_solver/petsc_solver.hpp"
+
+extern char** environ;
+
+namespace stiffsoft {
+namespace {
+
+const std::filesystem::path kDataDir =
+    std::filesystem::path(STIFFSOFT_SOURCE_DIR) / "tests/coupling/data/linear_systems";
+/// Hessians of Newton iterations of real scenes (bench/linear_solver_bench --dump, see the
+/// folder's README.md): box_stack (10 boxes, a chain of 9 contacts), house_of_cards (15
+/// cards, 18 contacts with loops: the hardest for Krylov), light (11 free bodies, no contact).
+const std::vector<std::string> kSystems{"box_stack_step60", "house_of_cards_step8", "light_step30"};
+
+double relative_residual(const LinearSystem& s, const Eigen::VectorXd& p) {
+  return (s.b - s.upper.selfadjointView<Eigen::Upper>() * p).norm() / s.b.norm();
+}
+
+Eigen::MatrixXd dense(const Eigen::SparseMatrix<double>& upper) {
+  const Eigen::SparseMatrix<double> full = upper.selfadjointView<Eigen::Upper>();
+  return Eigen::MatrixXd(full);
+}
+
+/// A random symmetric matrix over DOF blocks of the given sizes with some off-diagonal block
+/// couplings, as its upper triangle: dense diagonal blocks, dense coupled blocks.
+Eigen::SparseMatrix<double> random_block_upper(const std::vector<int>& sizes, int couplings, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<int> offsets{0};
+  for (int s : sizes) offsets.push_back(offsets.back() + s);
+  const int n = offsets.back();
+  std::vector<Eigen::Triplet<double>> t;
+  for (std::size_t b = 0; b < sizes.size(); ++b)
+    for (int r = offsets[b]; r < offsets[b + 1]; ++r)
+      for (int c = r; c < offsets[b + 1]; ++c) t.emplace_back(r, c, r == c ? 50 + u(rng) : u(rng));
+  std::uniform_int_distribution<int> pick(0, int(sizes.size()) - 1);
+  for (int k = 0; k < couplings; ++k) {
+    int a = pick(rng), b = pick(rng);
+    if (a == b) continue;
+    if (a > b) std::swap(a, b);
+    for (int r = offsets[a]; r < offsets[a + 1]; ++r)
+      for (int c = offsets[b]; c < offsets[b + 1]; ++c) t.emplace_back(r, c, u(rng));
+  }
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(t.begin(), t.end(), [](double, double b) { return b; });
+  A.makeCompressed();
+  return A;
+}
+
+/// The dense matrix a BlockSparsePattern stores (mirrored where the storage holds upper blocks only).
+Eigen::MatrixXd from_blocks(const BlockSparsePattern& p, const std::vector<double>& values) {
+  const int n = 3 * p.num_block_rows();
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n);
+  for (int i = 0; i < p.row_end() - p.row_begin(); ++i)
+    for (int k = p.row_offsets()[i]; k < p.row_offsets()[i + 1]; ++k) {
+      const int I = p.row_begin() + i, J = p.block_columns()[k];
+      const Eigen::Map<const Eigen::Matrix3d> block(values.data() + 9 * k);  // column-major
+      M.block<3, 3>(3 * I, 3 * J) = block;
+      if (p.storage() == BlockStorage::Upper && I != J) M.block<3, 3>(3 * J, 3 * I) = block.transpose();
+    }
+  return M;
+}
+
+// --- block layout --------------------------------------------------------------------------
+
+TEST(BlockSparsePattern, StoresTheWholeSymmetricMatrixInEitherStorage) {
+  const Eigen::SparseMatrix<double> A = random_block_upper({12, 3, 12, 3, 3, 12}, 6, 1);
+  for (const BlockStorage storage : {BlockStorage::Full, BlockStorage::Upper}) {
+    const BlockSparsePattern p(A, storage);
+    std::vector<double> values;
+    p.gather_values(A, values);
+    EXPECT_EQ(values.size(), p.num_values());
+    EXPECT_EQ((from_blocks(p, values) - dense(A)).norm(), 0.0);
+    if (storage == BlockStorage::Upper)
+      for (int I = 0; I < p.num_block_rows(); ++I)
+        for (int k = p.row_offsets()[I]; k < p.row_offsets()[I + 1]; ++k) EXPECT_GE(p.block_columns()[k], I);
+  }
+}
+
+TEST(BlockSparsePattern, OwnedRowRangesTogetherGiveTheWholeMatrix) {
+  const Eigen::SparseMatrix<double> A = random_block_upper({12, 12, 3, 3, 12, 3}, 8, 2);
+  const std::vector<int> bounds = split_rows({12, 12, 3, 3, 12, 3}, 3);
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(A.rows(), A.cols());
+  for (int part = 0; part < 3; ++part) {
+    const BlockSparsePattern p(A, BlockStorage::Full, bounds[part] / 3, bounds[part + 1] / 3);
+    std::vector<double> values;
+    p.gather_values(A, values);
+    M += from_blocks(p, values);
+  }
+  EXPECT_EQ((M - dense(A)).norm(), 0.0);
+}
+
+TEST(BlockSparsePattern, RejectsLowerEntriesAndSizesNotAMultipleOfThree) {
+  Eigen::SparseMatrix<double> lower(6, 6);
+  lower.insert(4, 1) = 1;
+  lower.makeCompressed();
+  EXPECT_THROW(BlockSparsePattern(lower, BlockStorage::Full), std::invalid_argument);
+  Eigen::SparseMatrix<double> odd(7, 7);
+  odd.makeCompressed();
+  EXPECT_THROW(BlockSparsePattern(odd, BlockStorage::Full), std::invalid_argument);
+}
+
+TEST(BlockSparsePattern, DetectsAChangedPattern) {
+  const Eigen::SparseMatrix<double> A = random_block_upper({12, 12, 12}, 1, 3);
+  const BlockSparsePattern p(A, BlockStorage::Full);
+  EXPECT_TRUE(p.same_pattern(A));
+  const Eigen::SparseMatrix<double> B = random_block_upper({12, 12, 12}, 3, 4);
+  EXPECT_FALSE(p.same_pattern(B));
+}
+
+TEST(InferBlockSizes, FindsAffineBodiesAndSoftNodes) {
+  const std::vector<int> sizes{12, 3, 3, 12, 12, 3};
+  EXPECT_EQ(infer_block_sizes(random_block_upper(sizes, 0, 5)), sizes);
+}
+
+TEST(SplitRows, NeverCutsABlockAndBalancesRows) {
+  const std::vector<int> bounds = split_rows({12, 12, 12, 12, 3, 3, 3, 3}, 2);
+  ASSERT_EQ(bounds.size(), 3u);
+  EXPECT_EQ(bounds.front(), 0);
+  EXPECT_EQ(bounds[1], 36);  // 36 | 24 is as even as whole 12-blocks allow (30 is the middle)
+  EXPECT_EQ(bounds.back(), 60);
+  EXPECT_THROW(split_rows({12}, 0), std::invalid_argument);
+}
+
+TEST(BlockJacobi, AppliesTheInverseOfEachDiagonalBlock) {
+  const std::vector<int> sizes{12, 3, 12};
+  const Eigen::SparseMatrix<double> A = random_block_upper(sizes, 3, 6);
+  BlockJacobi P(sizes, 0, 27);
+  ASSERT_TRUE(P.compute(A));
+  const Eigen::MatrixXd H = dense(A);
+  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(27, 27);
+  for (int o : {0, 12, 15}) {
+    const int s = o == 12 ? 3 : 12;
+    D.block(o, o, s, s) = H.block(o, o, s, s);
+  }
+  const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(27, -1, 2);
+  Eigen::VectorXd y(27);
+  P.apply(x.data(), y.data());
+  EXPECT_LT((D * y - x).norm(), 1e-12 * x.norm());
+  EXPECT_THROW(BlockJacobi(sizes, 0, 13), std::invalid_argument);  // cuts the second block
+}
+
+// --- every backend on stored Newton systems -----------------------------------------------------
+
+TEST(LinearSystemIo, StoredSystemsAreSymmetricPositiveDefinite) {
+  for (const std::string& name : kSystems) {
+    const LinearSystem s = load_linear_system(kDataDir, name);
+    EXPECT_EQ(s.upper.rows() % 12, 0) << name;
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(dense(s.upper), Eigen::EigenvaluesOnly);
+    EXPECT_GT(eig.eigenvalues().minCoeff(), 0) << name;
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "stiffsoft_linear_system_io";
+    save_linear_system(s, dir);
+    const LinearSystem again = load_linear_system(dir, name);
+    EXPECT_EQ((Eigen::MatrixXd(again.upper) - Eigen::MatrixXd(s.upper)).norm(), 0.0) << name;
+    EXPECT_EQ((again.b - s.b).norm(), 0.0) << name;
+  }
+}
+
+const std::vector<std::string> kBackends{"cholmod",
+                                         "petsc:cg:none",
+                                         "petsc:cg:jacobi",
+                                         "petsc:cg:pbjacobi",
+                                         "petsc:cg:vpbjacobi",
+                                         "petsc:cg:icc",
+                                         "petsc:cg:gamg",
+                                         "petsc:cg:hypre",
+                                         "petsc:minres:vpbjacobi",
+                                         "petsc:minres:jacobi",
+                                         "petsc:gmres:icc",
+                                         "petsc",
+                                         "auto"};
+
+TEST(LinearSolver, EveryBackendSolvesTheStoredSystemsToTheRequestedResidual) {
+  // Unpreconditioned CG needs 1227 iterations on house_of_cards at η = 1e-10 (MINRES with
+  // Jacobi 1008), beyond the default cap of 1000 that hands such solves to the fallback.
+  set_petsc_option("-ksp_max_it", "5000");
+  for (const double eta : {1e-10, 1e-4}) {
+    for (const std::string& name : kSystems) {
+      const LinearSystem s = load_linear_system(kDataDir, name);
+      for (const std::string& backend : kBackends) {
+        SCOPED_TRACE(backend + " on " + name + ", eta " + std::to_string(eta));
+        std::unique_ptr<LinearSolver> solver = make_linear_solver(backend);
+        solver->set_relative_tolerance(eta);
+        solver->analyze_pattern(s.upper);
+        ASSERT_TRUE(solver->factorize(s.upper));
+        const Eigen::VectorXd p = solver->solve(s.b);
+        const LinearSolveReport& r = solver->last_report();
+        EXPECT_TRUE(r.converged()) << to_string(r.status) << ": " << r.reason;
+        EXPECT_FALSE(r.fallback_used) << r.primary_failure;
+        const double residual = relative_residual(s, p);
+        const double requested = solver->is_iterative() ? eta : 1e-10;
+        EXPECT_LE(residual, requested);
+        EXPECT_NEAR(r.relative_residual, residual,
+                    1e-3 * requested);  // the report's residual is the true one
+        if (solver->is_iterative()) EXPECT_GT(r.iterations, 0);
+      }
+    }
+  }
+  clear_petsc_option("-ksp_max_it");
+}
+
+TEST(PetscSolver, BaijAndSbaijGiveTheSameSolution) {
+  const LinearSystem s = load_linear_system(kDataDir, kSystems[0]);
+  Eigen::VectorXd p[2];
+  int k = 0;
+  for (const char* type : {"baij", "sbaij"}) {
+    PetscSolverSettings settings;
+    settings.pc_type = "jacobi";
+    settings.matrix_type = type;
+    settings.relative_tolerance = 1e-12;
+    PetscSolver solver(settings);
+    solver.analyze_pattern(s.upper);
+    ASSERT_TRUE(solver.factorize(s.upper));
+    p[k++] = solver.solve(s.b);
+    EXPECT_TRUE(solver.last_report().converged());
+  }
+  EXPECT_LT((p[0] - p[1]).norm(), 1e-8 * p[0].norm());
+}
+
+TEST(PetscSolver, ReusesTheMatrixWhileThePatternIsUnchanged) {
+  const LinearSystem s = load_linear_system(kDataDir, kSystems[1]);
+  PetscSolverSettings settings;
+  settings.relative_tolerance = 1e-10;
+  PetscSolver solver(settings);
+  solver.analyze_pattern(s.upper);
+  Eigen::SparseMatrix<double> H = s.upper;
+  for (int k = 0; k < 3; ++k) {
+    // Same pattern, new values (as Newton's next iteration, or its diagonal shift).
+    for (int i = 0; i < H.rows(); ++i) H.coeffRef(i, i) *= 1.5;
+    ASSERT_TRUE(solver.factorize(H));
+    const Eigen::VectorXd p = solver.solve(s.b);
+    EXPECT_LE((s.b - H.selfadjointView<Eigen::Upper>() * p).norm() / s.b.norm(), 1e-10);
+  }
+  EXPECT_EQ(solver.preallocations(), 1);
+  // A different pattern (another system) is noticed even without analyze_pattern().
+  const LinearSystem other = load_linear_system(kDataDir, kSystems[2]);
+  ASSERT_TRUE(solver.factorize(other.upper));
+  EXPECT_LE(relative_residual(other, solver.solve(other.b)), 1e-10);
+  EXPECT_EQ(solver.preallocations(), 2);
+}
+
+TEST(PetscSolver, UsesGivenDofBlocksAndChecksThem) {
+  const LinearSystem s = load_linear_system(kDataDir, kSystems[0]);
+  PetscSolverSettings settings;
+  settings.pc_type = "vpbjacobi";
+  PetscSolver solver(settings);
+  solver.set_block_sizes(std::vector<int>(s.upper.rows() / 12, 12));
+  solver.analyze_pattern(s.upper);
+  ASSERT_TRUE(solver.factorize(s.upper));
+  EXPECT_LE(relative_residual(s, solver.solve(s.b)), 1e-8);
+  PetscSolver wrong;
+  wrong.set_block_sizes({12, 12});
+  EXPECT_THROW(wrong.analyze_pattern(s.upper), std::invalid_argument);
+  EXPECT_THROW(wrong.set_block_sizes({12, 4}), std::invalid_argument);
+}
+
+TEST(PetscSolver, LooserToleranceTakesFewerIterations) {
+  const LinearSystem s = load_linear_system(kDataDir, kSystems[1]);
+  PetscSolverSettings settings;
+  settings.pc_type = "jacobi";
+  PetscSolver solver(settings);
+  solver.analyze_pattern(s.upper);
+  int iterations[2];
+  int k = 0;
+  for (const double eta : {1e-2, 1e-10}) {
+    solver.set_relative_tolerance(eta);
+    ASSERT_TRUE(solver.factorize(s.upper));
+    const Eigen::VectorXd p = solver.solve(s.b);
+    EXPECT_LE(relative_residual(s, p), eta);
+    EXPECT_DOUBLE_EQ(solver.last_report().requested_tolerance, eta);
+    iterations[k++] = solver.last_report().iterations;
+  }
+  EXPECT_LT(iterations[0], iterations[1]);
+}
+
+// --- failures -------------------------------------------------------------------------------
+
+/// H − σI with σ in the middle of H's spectrum (geometric mean of its extreme eigenvalues).
+Eigen::SparseMatrix<double> indefinite(const LinearSystem& s) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(dense(s.upper), Eigen::EigenvaluesOnly);
+  const double sigma = std::sqrt(eig.eigenvalues().minCoeff() * eig.eigenvalues().maxCoeff());
+  Eigen::SparseMatrix<double> A = s.upper;
+  for (int i = 0; i < A.rows(); ++i) A.coeffRef(i, i) -= sigma;
+  return A;
+}
+
+TEST(LinearSolver, ReportsAnIndefiniteMatrixInsteadOfReturningADirection) {
+  for (const std::string& name : {kSystems[0], kSystems[1]}) {
+    SCOPED_TRACE(name);
+    const LinearSystem s = load_linear_system(kDataDir, name);
+    const Eigen::SparseMatrix<double> A = indefinite(s);
+    CholmodSolver cholmod;
+    cholmod.analyze_pattern(A);
+    EXPECT_FALSE(cholmod.factorize(A));
+    EXPECT_EQ(cholmod.last_report().status, LinearSolveStatus::Indefinite);
+    EXPECT_FALSE(cholmod.solve(s.b).allFinite());
+    int reported = 0;
+    for (const char* pc : {"none", "jacobi", "pbjacobi", "vpbjacobi", "icc", "gamg", "hypre"})
+      for (const KrylovFallback fallback : {KrylovFallback::None, KrylovFallback::Cholmod}) {
+        SCOPED_TRACE(std::string(pc) + (fallback == KrylovFallback::None ? "" : " with fallback"));
+        PetscSolverSettings settings;
+        settings.pc_type = pc;
+        settings.fallback = fallback;
+        PetscSolver solver(settings);
+        solver.analyze_pattern(A);
+        Eigen::VectorXd p;
+        const bool factorized = solver.factorize(A);
+        if (factorized) p = solver.solve(s.b);
+        const LinearSolveReport& r = solver.last_report();
+        if (factorized && p.allFinite()) {
+          // Krylov methods need not notice (CG may never meet negative curvature); what comes
+          // back must then still be the solution of H p = b, and a descent direction.
+          EXPECT_TRUE(r.converged()) << to_string(r.status) << ": " << r.reason;
+          EXPECT_LE((s.b - A.selfadjointView<Eigen::Upper>() * p).norm() / s.b.norm(), 1e-8);
+          EXPECT_GT(s.b.dot(p), 0);
+          continue;
+        }
+        ++reported;
+        EXPECT_FALSE(r.converged());
+        // CG saw negative curvature, a preconditioner failed to build, or CHOLMOD failed.
+        EXPECT_TRUE(r.status == LinearSolveStatus::Indefinite ||
+                    r.status == LinearSolveStatus::PreconditionerFailed)
+            << to_string(r.status) << ": " << r.reason;
+        EXPECT_FALSE(r.reason.empty());
+      }
+    // Measured: all 14 on house_of_cards; on box_stack (a chain of contacts) CG with ICC solves
+    // H p = b exactly in one iteration and p is a descent direction, the other 12 report.
+    EXPECT_GE(reported, 12);
+  }
+}
+
+TEST(PetscSolver, ReportsTheIterationCapAndFallsBackToCholmod) {
+  const LinearSystem s = load_linear_system(kDataDir, kSystems[1]);
+  for (const KrylovFallback fallback : {KrylovFallback::None, KrylovFallback::Cholmod}) {
+    PetscSolverSettings settings;
+    settings.pc_type = "none";
+    settings.max_iterations = 3;
+    settings.relative_tolerance = 1e-12;
+    settings.fallback = fallback;
+    PetscSolver solver(settings);
+    solver.analyze_pattern(s.upper);
+    ASSERT_TRUE(solver.factorize(s.upper));
+    const Eigen::VectorXd p = solver.solve(s.b);
+    const LinearSolveReport& r = solver.last_report();
+    EXPECT_EQ(r.iterations, 3);
+    if (fallback == KrylovFallback::None) {
+      EXPECT_EQ(r.status, LinearSolveStatus::IterationCap);
+      EXPECT_EQ(r.reason, "DIVERGED_ITS");
+      EXPECT_FALSE(p.allFinite());
+    } else {
+      EXPECT_TRUE(r.converged());
+      EXPECT_TRUE(r.fallback_used);
+      EXPECT_NE(r.primary_failure.find("DIVERGED_ITS"), std::string::npos) << r.primary_failure;
+      EXPECT_LE(relative_residual(s, p), 1e-10);
+    }
+  }
+}
+
+TEST(LinearSolver, FactoryNamesTheAvailableBackendsForAnUnknownOne) {
+  try {
+    make_linear_solver("superlu");
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("cholmod"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("petsc:KSP"), std::string::npos) << e.what();
+  }
+  for (const char* good : {"cholmod", "auto", "petsc", "petsc:cg", "petsc:minres:jacobi", "petsc:cg:hypre"})
+    EXPECT_NO_THROW(check_linear_solver_name(good)) << good;
+  for (const char* bad : {"lu", "petsc:", "petsc:cg:", "petsc:bicg", "petsc:cg:ilu", "petsc:cg:icc:x"})
+    EXPECT_THROW(check_linear_solver_name(bad), std::invalid_argument) << bad;
+  EXPECT_THROW(make_linear_solver("petsc:bicg"), std::invalid_argument);
+  EXPECT_THROW(make_linear_solver("petsc:cg:ilu"), std::invalid_argument);
+  EXPECT_THROW(make_linear_solver("petsc:cg:jacobi:extra"), std::invalid_argument);
+  EXPECT_THROW(register_linear_solver("cholmod", [] { return std::make_unique<CholmodSolver>(); }),
+               std::invalid_argument);
+  EXPECT_EQ(make_linear_solver("petsc:gmres:gamg")->name(), "petsc:gmres:gamg");
+  EXPECT_EQ(make_linear_solver("petsc:minres")->name(), "petsc:minres:icc");
+  EXPECT_EQ(make_linear_solver("petsc")->name(), "petsc:cg:icc");
+}
+
+// --- PETSc options, command line, forcing terms --------------------------------------------------
+
+TEST(PetscSolver, TheOptionsDatabaseOverridesTheNamedMethod) {
+  ensure_petsc_initialized();
+  {
+    // PETSc runs already: a session's options only go into its database.
+    const PetscSession session(
+        std::vector<std::string>{"-ksp_type", "minres", "-pc_type", "jacobi", "-ksp_rtol", "1e-3"});
+    EXPECT_FALSE(session.owns_petsc());
+  }
+  PetscSolver solver;  // asks for CG with ICC
+  for (const char* option : {"-ksp_type", "-pc_type", "-ksp_rtol"}) clear_petsc_option(option);
+  EXPECT_EQ(solver.name(), "petsc:minres:jacobi");
+  const LinearSystem s = load_linear_system(kDataDir, kSystems[0]);
+  solver.set_relative_tolerance(1e-10);  // the command line's -ksp_rtol wins
+  solver.analyze_pattern(s.upper);
+  ASSERT_TRUE(solver.factorize(s.upper));
+  const Eigen::VectorXd p = solver.solve(s.b);
+  EXPECT_DOUBLE_EQ(solver.last_report().requested_tolerance, 1e-3);
+  EXPECT_LE(relative_residual(s, p), 1e-3);
+  EXPECT_EQ(PetscSolver().name(), "petsc:cg:icc");  // options cleared: the defaults again
+}
+
+TEST(SplitPetscArguments, PetscOptionsGoToPetscAndTheRestToTheProgram) {
+  const char* argv[] = {"stiffsoft",    "run",           "scene.json", "-ksp_type",   "cg",        "-o",
+                        "out",          "-log_view",     "--steps",    "3",           "-ksp_rtol", "-1e-3",
+                        "-ksp_monitor", "-pc_type",      "gamg",       "-help_petsc", "--threads", "2",
+                        "-ksp_view",    "ascii:view.txt"};
+  const SplitCommandLine split = split_petsc_arguments(int(std::size(argv)), argv);
+  EXPECT_EQ(split.program, (std::vector<std::string>{"stiffsoft", "run", "scene.json", "-o", "out", "--steps",
+                                                     "3", "--threads", "2"}));
+  EXPECT_EQ(split.petsc, (std::vector<std::string>{"stiffsoft", "-ksp_type", "cg", "-log_view", "-ksp_rtol",
+                                                   "-1e-3", "-ksp_monitor", "-pc_type", "gamg", "-help",
+                                                   "-ksp_view", "ascii:view.txt"}));
+  const char* flag_first[] = {"stiffsoft", "-log_view", "run", "scene.json"};
+  EXPECT_EQ(split_petsc_arguments(4, flag_first).program,
+            (std::vector<std::string>{"stiffsoft", "run", "scene.json"}));
+  EXPECT_FALSE(is_petsc_option("--ksp_type"));
+  EXPECT_FALSE(is_petsc_option("-o"));
+  EXPECT_TRUE(is_petsc_option("-pc_gamg_threshold"));
+}
+
+TEST(ForcingTerm, FollowsEisenstatWalkerChoiceTwoWithItsSafeguards) {
+  const ForcingTermSettings s;
+  // No previous iteration: η_0.
+  EXPECT_DOUBLE_EQ(forcing_term(1.0, 0.0, 0.0), s.eta_initial);
+  // γ (‖g_k‖/‖g_{k−1}‖)^α when the safeguard is inactive (γ η_{k−1}^α ≤ 0.1).
+  const double eta_previous = 0.05;
+  EXPECT_NEAR(forcing_term(0.3, 1.0, eta_previous), 0.9 * std::pow(0.3, s.alpha), 1e-15);
+  // Safeguard: after a large η, a sudden drop is limited to γ η_{k−1}^α.
+  EXPECT_NEAR(forcing_term(1e-3, 1.0, 0.5), 0.9 * std::pow(0.5, s.alpha), 1e-15);
+  // Bounds.
+  EXPECT_DOUBLE_EQ(forcing_term(2.0, 1.0, 0.01), s.eta_max);
+  EXPECT_DOUBLE_EQ(forcing_term(1e-12, 1.0, 1e-6), s.eta_min);
+  // The sequence tightens as ‖g‖ converges quadratically.
+  double eta = forcing_term(1.0, 0.0, 0.0), g_prev = 1.0;
+  for (const double g : {0.5, 0.1, 1e-3, 1e-7}) {
+    const double next = forcing_term(g, g_prev, eta);
+    EXPECT_LE(next, eta);
+    eta = next;
+    g_prev = g;
+  }
+  EXPECT_LT(eta, 1e-6);
+}
+
+// --- MPI -------------------------------------------------------------------------------------
+
+std::string shell_quote(const std::string& s) { return "'" + s + "'"; }
+
+/// Binary dump of a vector, for the parent test to compare ranks.
+void write_vector(const std::filesystem::path& path, const Eigen::VectorXd& v) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * sizeof(double)));
+}
+
+Eigen::VectorXd read_vector(const std::filesystem::path& path, int n) {
+  Eigen::VectorXd v(n);
+  std::ifstream in(path, std::ios::binary);
+  in.read(reinterpret_cast<char*>(v.data()), std::streamsize(n * sizeof(double)));
+  if (!in) v.setConstant(std::nan(""));
+  return v;
+}
+
+const std::vector<std::string> kMpiBackends{"petsc:cg:vpbjacobi", "petsc:cg:jacobi", "petsc:cg:pbjacobi",
+                                            "petsc:cg:icc",       "petsc:cg:gamg",   "petsc:cg:hypre",
+                                            "petsc:gmres:icc"};
+
+/// Runs only inside `mpirun -n 2` started by the test below (STIFFSOFT_MPI_CHILD set).
+TEST(PetscSolverMpiChild, SolvesDistributedOnTwoRanks) {
+  const char* out = std::getenv("STIFFSOFT_MPI_CHILD");
+  if (!out) GTEST_SKIP() << "runs inside mpirun, started by PetscSolverMpi.TwoRanksAgreeWithTheSerialSolve";
+  ensure_petsc_initialized();
+  ASSERT_EQ(PetscSession::size(), 2);
+  const int rank = PetscSession::rank();
+  const LinearSystem s = load_linear_system(kDataDir, kSystems[1]);
+  for (std::size_t k = 0; k < kMpiBackends.size(); ++k) {
+    SCOPED_TRACE(kMpiBackends[k]);
+    std::unique_ptr<LinearSolver> solver = make_linear_solver(kMpiBackends[k]);
+    solver->set_relative_tolerance(1e-10);
+    solver->analyze_pattern(s.upper);
+    ASSERT_TRUE(solver->factorize(s.upper));
+    const Eigen::VectorXd p = solver->solve(s.b);
+    const LinearSolveReport& r = solver->last_report();
+    EXPECT_TRUE(r.converged()) << r.reason;
+    EXPECT_FALSE(r.fallback_used) << r.primary_failure;
+    EXPECT_LE(relative_residual(s, p), 1e-10);
+    const auto rows = dynamic_cast<const PetscSolver&>(*solver).owned_rows();
+    EXPECT_EQ(rank == 0 ? rows.first : rows.second, rank == 0 ? 0 : int(s.upper.rows()));
+    EXPECT_GT(rows.second - rows.first, 0);
+    write_vector(std::filesystem::path(out) / ("p" + std::to_string(k) + "_rank" + std::to_string(rank)), p);
+  }
+}
+
+TEST(PetscSolverMpi, TwoRanksAgreeWithTheSerialSolve) {
+  if (std::system("command -v mpirun > /dev/null 2>&1") != 0) GTEST_SKIP() << "no mpirun";
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("stiffsoft_mpi_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  // The child must not inherit this process's MPI singleton environment (if it has one).
+  std::string unset;
+  for (char** e = environ; *e; ++e) {
+    const std::string var(*e);
+    const std::string key = var.substr(0, var.find('='));
+    for (const char* prefix : {"OMPI_", "PMIX_", "OPAL_", "PRTE_", "ORTE_"})
+      if (key.rfind(prefix, 0) == 0) unset += " -u " + key;
+  }
+  const std::string exe = std::filesystem::read_symlink("/proc/self/exe").string();
+  const std::string log = (dir / "log.txt").string();
+  const std::string command = "env" + unset + " STIFFSOFT_MPI_CHILD=" + shell_quote(dir.string()) +
+                              " timeout 300 mpirun --allow-run-as-root --oversubscribe -n 2 " +
+                              shell_quote(exe) + " --gtest_filter=PetscSolverMpiChild.* > " +
+                              shell_quote(log) + " 2>&1";
+  const int status = std::system(command.c_str());
+  std::ifstream in(log);
+  const std::string output((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(status, 0) << command << "\n" << output;
+
+  const LinearSystem s = load_linear_system(kDataDir, kSystems[1]);
+  CholmodSolver cholmod;
+  cholmod.analyze_pattern(s.upper);
+  ASSERT_TRUE(cholmod.factorize(s.upper));
+  const Eigen::VectorXd reference = cholmod.solve(s.b);
+  // ‖p − p*‖ ≤ ‖H⁻¹‖ ‖b − Hp‖ ≤ κ(H) η ‖p*‖ with η = 1e-10.
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(dense(s.upper), Eigen::EigenvaluesOnly);
+  const double kappa = eig.eigenvalues().maxCoeff() / eig.eigenvalues().minCoeff();
+  for (std::size_t k = 0; k < kMpiBackends.size(); ++k) {
+    SCOPED_TRACE(kMpiBackends[k]);
+    const Eigen::VectorXd p0 = read_vector(dir / ("p" + std::to_string(k) + "_rank0"), int(s.b.size()));
+    const Eigen::VectorXd p1 = read_vector(dir / ("p" + std::to_string(k) + "_rank1"), int(s.b.size()));
+    ASSERT_TRUE(p0.allFinite() && p1.allFinite()) << output;
+    EXPECT_EQ((p0 - p1).norm(), 0.0);  // every rank holds the same gathered solution
+    EXPECT_LE((p0 - reference).norm(), 1e-10 * kappa * reference.norm());
+  }
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace stiffsoft
