@@ -226,8 +226,7 @@ int main(int argc, char** argv) {
         std::printf("| %s | %d | %ld | %d | %s | %s | %.2f | %.2f | %.2f | %d | %.1e | %s%s | %s |\n",
                     r.system.c_str(), r.rows, r.nonzeros, r.ranks, r.backend.c_str(), direct ? "–" : eta,
                     r.analyze_ms, r.setup_ms, r.solve_ms, r.iterations, r.residual, r.status.c_str(),
-                    r.fallback ? " (fallback CHOLMOD)" : "",
-                    direct ? mflop : "");
+                    r.fallback ? " (fallback CHOLMOD)" : "", direct ? mflop : "");
         std::fflush(stdout);
         out << r.system << ',' << r.rows << ',' << r.nonzeros << ',' << r.ranks << ',' << r.backend << ','
             << (direct ? 0.0 : rtol) << ',' << r.analyze_ms << ',' << r.setup_ms << ',' << r.solve_ms << ','

@@ -1,5 +1,6 @@
 #include "coupling/linear_solver/auto_solver.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "coupling/linear_solver/cholmod_solver.hpp"
@@ -11,23 +12,28 @@ AutoSolver::AutoSolver() = default;
 AutoSolver::~AutoSolver() = default;
 
 void AutoSolver::analyze_pattern(const Eigen::SparseMatrix<double>& upper) {
-  bool krylov = upper.rows() >= kAutoKrylovRows;
-  std::unique_ptr<CholmodSolver> cholmod;
-  if (!krylov) {
-    cholmod = std::make_unique<CholmodSolver>();
-    cholmod->analyze_pattern(upper);
-    krylov = cholmod->factor_flops() > kAutoCholmodFlops;
-  }
-  if (!krylov) {
-    m_backend = std::move(cholmod);  // analysed already
-    m_krylov = false;
+  const long nonzeros = long(upper.nonZeros());
+  const bool redecide = !m_backend || std::abs(nonzeros - m_decided_nonzeros) >
+                                          kAutoRedecideChange * double(m_decided_nonzeros);
+  if (!redecide) {
+    m_backend->analyze_pattern(upper);
     return;
   }
-  if (!m_backend || !m_krylov) {
+  m_decided_nonzeros = nonzeros;
+  if (upper.rows() < kAutoKrylovRows) {
+    auto cholmod = std::make_unique<CholmodSolver>();
+    cholmod->analyze_pattern(upper);
+    if (cholmod->factor_flops() <= kAutoCholmodFlops) {
+      m_backend = std::move(cholmod);  // analysed already
+      m_krylov = false;
+      return;
+    }
+  }
+  if (!m_krylov || !m_backend) {
     m_backend = std::make_unique<PetscSolver>(default_petsc_method());
+    m_krylov = true;
     if (m_eta > 0) m_backend->set_relative_tolerance(m_eta);
     if (!m_block_sizes.empty()) m_backend->set_block_sizes(m_block_sizes);
-    m_krylov = true;
   }
   m_backend->analyze_pattern(upper);
 }

@@ -1,6 +1,6 @@
 #pragma once
 /// @file The "auto" linear solver: CHOLMOD when its factorisation is cheap, PETSc's default
-/// Krylov method otherwise, decided at every analyze_pattern() from CHOLMOD's own prediction.
+/// Krylov method (CG with ICC(0)) otherwise, from CHOLMOD's own prediction of its cost.
 
 #include <memory>
 
@@ -8,19 +8,26 @@
 
 namespace stiffsoft {
 
-/// Rows from which "auto" takes the Krylov method without asking CHOLMOD (its symbolic
-/// analysis alone costs about a second there).
-constexpr int kAutoKrylovRows = 100000;
+/// Predicted factorisation cost (CHOLMOD's symbolic analysis, cholmod_common::fl) up to which
+/// "auto" keeps CHOLMOD. From bench/linear_solver_bench (docs/benchmarks.md, "Linear
+/// solvers"): the rigid pile `medium` (0.98 Mflop) was factorised and solved by CHOLMOD in 1.3
+/// ms against 3.8 ms for CG + ICC(0) at η = 1e-8 (1.1 ms at 1e-3), while every system above
+/// 2.8 Mflop (hybrid and soft scenes, `full`, 3D lattices) was solved 2× to 100× faster by
+/// CG + ICC(0) than by CHOLMOD (reference BLAS, 2 busy cores).
+constexpr double kAutoCholmodFlops = 2e6;
 
-/// Predicted factorisation flops (CHOLMOD's symbolic analysis, cholmod_common::fl) up to which
-/// "auto" keeps CHOLMOD. From bench/linear_solver_bench (docs/benchmarks.md, "Linear solvers"):
-/// CHOLMOD's factorisation ran at roughly 1 Gflop/s here (reference BLAS, 2 busy cores), and
-/// CG with ICC solved the systems where CHOLMOD needs more than ~3e7 flops faster.
-constexpr double kAutoCholmodFlops = 3e7;
+/// Rows from which "auto" takes the Krylov method without asking CHOLMOD: its analysis alone
+/// costs about as much as a Krylov solve there (81 000 rows: 1 s against 0.4–0.7 s).
+constexpr int kAutoKrylovRows = 50000;
 
-/// Delegates to CHOLMOD or to PETSc (default_petsc_method()): rows ≥ kAutoKrylovRows → PETSc;
-/// otherwise CHOLMOD analyses the pattern and is kept when it predicts at most
-/// kAutoCholmodFlops for the factorisation. Re-decides whenever the pattern is analysed.
+/// The analysis is repeated only when the number of stored entries moved by more than this
+/// fraction since the last decision (contacts come and go at every few Newton iterations).
+constexpr double kAutoRedecideChange = 0.25;
+
+/// Delegates to CHOLMOD or to PETSc (default_petsc_method()): below kAutoKrylovRows rows
+/// CHOLMOD analyses the pattern and is kept when it predicts at most kAutoCholmodFlops for the
+/// factorisation; otherwise PETSc. The decision is revisited at an analyze_pattern() whose
+/// number of stored entries differs by more than kAutoRedecideChange from the last decision's.
 class AutoSolver final : public LinearSolver {
  public:
   /// Nothing chosen yet.
@@ -45,6 +52,7 @@ class AutoSolver final : public LinearSolver {
  private:
   std::unique_ptr<LinearSolver> m_backend;
   bool m_krylov = false;
+  long m_decided_nonzeros = 0;  // stored entries at the last decision
   double m_eta = 0;
   std::vector<int> m_block_sizes;
 };

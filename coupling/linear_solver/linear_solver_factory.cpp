@@ -34,7 +34,8 @@ PetscSolverSettings petsc_settings(const std::string& name) {
   if (name == "petsc") return settings;
   const std::vector<std::string> parts = split(name, ':');
   if (parts.size() > 3 || parts[1].empty() || (parts.size() == 3 && parts[2].empty()))
-    throw std::invalid_argument("linear solver '" + name + "': expected petsc:KSP or petsc:KSP:PC, e.g. petsc:cg:gamg");
+    throw std::invalid_argument("linear solver '" + name +
+                                "': expected petsc:KSP or petsc:KSP:PC, e.g. petsc:cg:gamg");
   settings.ksp_type = parts[1];
   if (parts.size() == 3) settings.pc_type = parts[2];
   check_petsc_method(settings);
@@ -79,7 +80,8 @@ void check_linear_solver_name(const std::string& name) {
 std::unique_ptr<LinearSolver> make_linear_solver(const std::string& name) {
   if (name == "cholmod") return std::make_unique<CholmodSolver>();
   if (name == "auto") return std::make_unique<AutoSolver>();
-  if (name == "petsc" || name.rfind("petsc:", 0) == 0) return std::make_unique<PetscSolver>(petsc_settings(name));
+  if (name == "petsc" || name.rfind("petsc:", 0) == 0)
+    return std::make_unique<PetscSolver>(petsc_settings(name));
   if (const auto it = registry().find(name); it != registry().end()) return it->second();
   unknown(name);
 }

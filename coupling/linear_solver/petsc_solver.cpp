@@ -232,10 +232,6 @@ PetscSolver::PetscSolver(const PetscSolverSettings& settings) : m_impl(std::make
     STIFFSOFT_PETSC(PCSetType(pc, PCSHELL));
     STIFFSOFT_PETSC(PCShellSetApply(pc, apply_block_jacobi));
     STIFFSOFT_PETSC(PCShellSetName(pc, "vpbjacobi: stiffsoft's inverse diagonal DOF blocks (12x12 / 3x3)"));
-  } else if (settings.pc_type == "icc" && m.size > 1) {
-    // ICC is sequential: block Jacobi over the ranks, ICC inside each rank's block.
-    STIFFSOFT_PETSC(PCSetType(pc, PCBJACOBI));
-    if (!has_option("-sub_pc_type")) STIFFSOFT_PETSC(PetscOptionsSetValue(nullptr, "-sub_pc_type", "icc"));
   } else if (settings.pc_type == "hypre") {
 #ifdef PETSC_HAVE_HYPRE
     STIFFSOFT_PETSC(PCSetType(pc, PCHYPRE));
@@ -265,11 +261,19 @@ PetscSolver::PetscSolver(const PetscSolverSettings& settings) : m_impl(std::make
     STIFFSOFT_PETSC(
         PCShellSetName(m.pc(), "vpbjacobi: stiffsoft's inverse diagonal DOF blocks (12x12 / 3x3)"));
   }
+  // ICC is sequential: in parallel, block Jacobi over the ranks with ICC inside each rank's
+  // block (through the options database, where -sub_pc_type given by the user wins).
+  bool parallel_icc = false;
+  if (m.pc_type() == PCICC && m.size > 1) {
+    STIFFSOFT_PETSC(PCSetType(m.pc(), PCBJACOBI));
+    if (!has_option("-sub_pc_type")) STIFFSOFT_PETSC(PetscOptionsSetValue(nullptr, "-sub_pc_type", "icc"));
+    parallel_icc = true;
+  }
   m.shell = m.pc_type() == PCSHELL;
   // The preconditioner in use decides the default matrix type (the options may have changed it).
   if (m.shell)
     m.preconditioner = "vpbjacobi";
-  else if (m.pc_type() == PCBJACOBI && settings.pc_type == "icc")
+  else if (parallel_icc)
     m.preconditioner = "icc";
   else
     m.preconditioner = m.pc_type();

@@ -16,6 +16,7 @@
 #include <random>
 #include <set>
 
+#include "coupling/linear_solver/auto_solver.hpp"
 #include "coupling/linear_solver/block_jacobi.hpp"
 #include "coupling/linear_solver/block_sparse_pattern.hpp"
 #include "coupling/linear_solver/cholmod_solver.hpp"
@@ -96,9 +97,12 @@ TEST(BlockSparsePattern, StoresTheWholeSymmetricMatrixInEitherStorage) {
     p.gather_values(A, values);
     EXPECT_EQ(values.size(), p.num_values());
     EXPECT_EQ((from_blocks(p, values) - dense(A)).norm(), 0.0);
-    if (storage == BlockStorage::Upper)
+    if (storage == BlockStorage::Upper) {
       for (int I = 0; I < p.num_block_rows(); ++I)
-        for (int k = p.row_offsets()[I]; k < p.row_offsets()[I + 1]; ++k) EXPECT_GE(p.block_columns()[k], I);
+        for (int k = p.row_offsets()[I]; k < p.row_offsets()[I + 1]; ++k) {
+          EXPECT_GE(p.block_columns()[k], I);
+        }
+    }
   }
 }
 
@@ -215,9 +219,11 @@ TEST(LinearSolver, EveryBackendSolvesTheStoredSystemsToTheRequestedResidual) {
         const double residual = relative_residual(s, p);
         const double requested = solver->is_iterative() ? eta : 1e-10;
         EXPECT_LE(residual, requested);
-        EXPECT_NEAR(r.relative_residual, residual,
-                    1e-3 * requested);  // the report's residual is the true one
-        if (solver->is_iterative()) EXPECT_GT(r.iterations, 0);
+        // The report's residual is the true one.
+        EXPECT_NEAR(r.relative_residual, residual, 1e-3 * requested);
+        if (solver->is_iterative()) {
+          EXPECT_GT(r.iterations, 0);
+        }
       }
     }
   }
@@ -401,6 +407,64 @@ TEST(LinearSolver, FactoryNamesTheAvailableBackendsForAnUnknownOne) {
   EXPECT_EQ(make_linear_solver("petsc:gmres:gamg")->name(), "petsc:gmres:gamg");
   EXPECT_EQ(make_linear_solver("petsc:minres")->name(), "petsc:minres:icc");
   EXPECT_EQ(make_linear_solver("petsc")->name(), "petsc:cg:icc");
+}
+
+/// A soft-body-like SPD system: a g×g×g lattice of nodes (3 DOFs each) with springs along the
+/// edges of the Kuhn tetrahedra of each cell, plus a mass term: 3D-mesh fill for CHOLMOD.
+Eigen::SparseMatrix<double> lattice_upper(int g) {
+  auto id = [g](int i, int j, int k) { return (i * g + j) * g + k; };
+  std::vector<Eigen::Triplet<double>> t;
+  for (int a = 0; a < 3 * g * g * g; ++a) t.emplace_back(a, a, 10.0);
+  const int dirs[7][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {0, 1, 1}, {1, 0, 1}, {1, 1, 1}};
+  for (int i = 0; i < g; ++i)
+    for (int j = 0; j < g; ++j)
+      for (int k = 0; k < g; ++k)
+        for (const auto& d : dirs) {
+          if (i + d[0] >= g || j + d[1] >= g || k + d[2] >= g) continue;
+          const int a = id(i, j, k), b = id(i + d[0], j + d[1], k + d[2]);
+          const Eigen::Vector3d u = Eigen::Vector3d(d[0], d[1], d[2]).normalized();
+          const Eigen::Matrix3d K = 1e4 * (u * u.transpose() + 0.1 * Eigen::Matrix3d::Identity());
+          for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) {
+              if (r <= c) {
+                t.emplace_back(3 * a + r, 3 * a + c, K(r, c));
+                t.emplace_back(3 * b + r, 3 * b + c, K(r, c));
+              }
+              t.emplace_back(3 * a + r, 3 * b + c, -K(r, c));
+            }
+        }
+  Eigen::SparseMatrix<double> A(3 * g * g * g, 3 * g * g * g);
+  A.setFromTriplets(t.begin(), t.end());
+  A.makeCompressed();
+  return A;
+}
+
+TEST(AutoSolver, TakesCholmodWhenItsFactorisationIsCheapAndPetscOtherwise) {
+  const LinearSystem small = load_linear_system(kDataDir, kSystems[1]);
+  const Eigen::SparseMatrix<double> large = lattice_upper(8);  // 1536 rows
+  CholmodSolver probe;
+  probe.analyze_pattern(large);
+  EXPECT_GT(probe.factor_flops(), kAutoCholmodFlops);
+  probe.analyze_pattern(small.upper);
+  EXPECT_LT(probe.factor_flops(), kAutoCholmodFlops);
+
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(large.rows(), -1, 1);
+  AutoSolver solver;
+  solver.set_relative_tolerance(1e-9);
+  for (int round = 0; round < 2; ++round) {  // and back: the decision follows the pattern
+    solver.analyze_pattern(small.upper);
+    ASSERT_TRUE(solver.factorize(small.upper));
+    EXPECT_LE(relative_residual(small, solver.solve(small.b)), 1e-10);
+    EXPECT_EQ(solver.name(), "auto→cholmod");
+    EXPECT_FALSE(solver.is_iterative());
+    solver.analyze_pattern(large);
+    ASSERT_TRUE(solver.factorize(large));
+    const Eigen::VectorXd p = solver.solve(b);
+    EXPECT_EQ(solver.name(), "auto→petsc:cg:icc");
+    EXPECT_TRUE(solver.is_iterative());
+    EXPECT_TRUE(solver.last_report().converged());
+    EXPECT_LE((b - large.selfadjointView<Eigen::Upper>() * p).norm() / b.norm(), 1e-9);
+  }
 }
 
 // --- PETSc options, command line, forcing terms --------------------------------------------------
