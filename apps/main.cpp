@@ -1,4 +1,4 @@
-/// @file The `stiffsoft` command: run a scene, check written frames, print versions.
+/// @file The `stiffsoft` command: run a scene, check written frames, run a convergence study, print versions.
 
 #include <CLI/CLI.hpp>
 #include <gmsh.h>
@@ -10,8 +10,11 @@
 #include <iostream>
 
 #include "check_command.hpp"
+#include "coupling/linear_solver/petsc_session.hpp"
 #include "io/scene_schema.hpp"
 #include "run_command.hpp"
+#include "study/study.hpp"
+#include "study/study_spec.hpp"
 
 namespace {
 std::string version_text() {
@@ -23,6 +26,11 @@ std::string version_text() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // PETSc's options (-ksp_type cg, -pc_type gamg, -ksp_monitor, -log_view, …) go to PETSc;
+  // under `mpirun -n N` every rank runs the scene, the linear solve is distributed and only
+  // rank 0 logs and writes.
+  stiffsoft::PetscSession petsc(argc, argv);
+  if (stiffsoft::PetscSession::rank() != 0) spdlog::set_level(spdlog::level::off);
   CLI::App app{"stiffsoft: stiff (affine) and soft solids in contact, intersection-free"};
   app.set_version_flag("--version", version_text());
   app.require_subcommand(1);
@@ -38,10 +46,21 @@ int main(int argc, char** argv) {
   CLI::App* check_cmd = app.add_subcommand("check", "exact intersection check of every frame of a .pvd series");
   check_cmd->add_option("pvd", pvd, "DIR/NAME.pvd written by `stiffsoft run`")->required();
 
-  CLI11_PARSE(app, argc, argv);
+  stiffsoft::study::StudyOptions study;
+  CLI::App* study_cmd = app.add_subcommand("study", "run a convergence study: sweep a scene's settings, errors against a reference, orders, plots");
+  study_cmd->add_option("study", study.study, "study file (.json, see studies/)")->required();
+  study_cmd->add_option("-o,--out", study.out, "output folder (runs are cached in DIR/runs)")->required();
+  study_cmd->add_option("--jobs", study.jobs, "runs at a time (default: the number of cores)")->check(CLI::NonNegativeNumber);
+  study_cmd->add_flag("!--no-check", study.check, "skip `stiffsoft check` of every run's frames");
+
+  CLI11_PARSE(app, petsc.program_argc(), petsc.program_argv());
   try {
     if (*run_cmd) return stiffsoft::run_scene(run);
     if (*check_cmd) return stiffsoft::check_frames(pvd);
+    if (*study_cmd) return stiffsoft::study::run_study(study);
+  } catch (const stiffsoft::study::StudyError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
   } catch (const stiffsoft::SceneError& e) {
     spdlog::error("{}", e.what());
     return 2;

@@ -7,8 +7,11 @@
 #include <fstream>
 #include <limits>
 #include <memory>
+#include <optional>
 
+#include "coupling/linear_solver/petsc_session.hpp"
 #include "io/atomic_file.hpp"
+#include "io/body_state_writer.hpp"
 #include "io/frame_writer.hpp"
 #include "io/scene_builder.hpp"
 #include "io/scene_loader.hpp"
@@ -22,8 +25,22 @@ namespace {
 const std::vector<std::string> kStatsColumns{
     "step", "time", "newton_iterations", "linear_iterations", "line_search_steps", "smallest_ccd_step", "converged",
     "contacts", "smallest_distance", "kinetic_energy", "potential_energy", "momentum_x", "momentum_y",
-    "momentum_z", "orthogonality_error", "elastic_energy", "inverted_tets", "kappa", "seconds_broad_phase", "seconds_ccd",
+    "momentum_z", "orthogonality_error", "elastic_energy", "inverted_tets", "kappa", "joint_error", "joint_force", "seconds_broad_phase", "seconds_ccd",
     "seconds_assembly", "seconds_solve", "seconds_step"};
+
+/// joints.csv: per written frame, each joint's anchor on body a and its force on body a
+/// (Simulation::joint_forces()); `joint` is the index in the scene's `joints` list.
+const std::vector<std::string> kJointColumns{"step", "time", "joint", "x", "y", "z", "force_x", "force_y", "force_z", "force"};
+
+void add_joint_rows(StatsWriter& out, const Simulation& sim, int step) {
+  const std::vector<Eigen::Vector3d> x = sim.joint_positions();
+  const std::vector<Eigen::Vector3d>& f = sim.joint_forces();
+  for (std::size_t j = 0; j < x.size(); ++j) {
+    const Eigen::Vector3d force = j < f.size() ? f[j] : Eigen::Vector3d::Zero();
+    out.add_row({double(step), sim.time(), double(j), x[j].x(), x[j].y(), x[j].z(), force.x(), force.y(), force.z(),
+                 force.norm()});
+  }
+}
 
 std::vector<double> stats_row(const StepStats& s) {
   return {double(s.step), s.time, double(s.newton.iterations), double(s.newton.linear_iterations),
@@ -31,7 +48,7 @@ std::vector<double> stats_row(const StepStats& s) {
           s.newton.smallest_ccd_step, s.newton.converged ? 1.0 : 0.0, double(s.contacts),
           s.smallest_distance, s.kinetic_energy, s.potential_energy, s.linear_momentum.x(),
           s.linear_momentum.y(), s.linear_momentum.z(), s.orthogonality_error, s.elastic_energy,
-          double(s.inverted_tets), s.kappa,
+          double(s.inverted_tets), s.kappa, s.joint_error, s.joint_force,
           s.times.broad_phase, s.times.ccd, s.times.assembly, s.times.solve, s.seconds};
 }
 
@@ -111,14 +128,25 @@ int run_scene(const RunOptions& options) {
                scene.name, model.bodies.size(), model.num_dofs, model.mesh.F.rows(), settings.h, settings.dhat,
                settings.eps_v, settings.tolerance, total);
 
-  std::filesystem::create_directories(options.out);
-  write_file_atomically(options.out / "scene.resolved.json",
-                        [&](std::ostream& os) { os << resolved_scene_json(scene).dump(2) << '\n'; });
+  // Under MPI every rank simulates (the linear solve is shared); rank 0 alone writes.
+  const bool writes = PetscSession::rank() == 0;
+  std::optional<FrameWriter> frames;
+  std::optional<StatsWriter> stats;
+  std::optional<BodyStateWriter> bodies;  // per-body state per step (studies)
+  std::optional<StatsWriter> joints;      // per-frame joint positions and forces
+  if (writes) {
+    std::filesystem::create_directories(options.out);
+    write_file_atomically(options.out / "scene.resolved.json",
+                          [&](std::ostream& os) { os << resolved_scene_json(scene).dump(2) << '\n'; });
+    frames.emplace(options.out, scene.name);
+    stats.emplace(options.out / "stats.csv", kStatsColumns);
+    bodies.emplace(options.out / "bodies.csv");
+    if (!scene.joints.empty()) joints.emplace(options.out / "joints.csv", kJointColumns);
+  }
   Simulation sim(std::move(model), settings);
   const Eigen::MatrixX3d x0 = sim.surface();
-  FrameWriter frames(options.out, scene.name);
-  StatsWriter stats(options.out / "stats.csv", kStatsColumns);
-  frames.write(0.0, frame_of(sim, x0));
+  if (writes) frames->write(0.0, frame_of(sim, x0));
+  if (writes) bodies->add_state(0, sim);
 
   const double frame_dt = *scene.output.frame_dt;
   double next_frame = frame_dt;
@@ -126,7 +154,8 @@ int run_scene(const RunOptions& options) {
   Progress progress(total);
   for (int k = 0; k < total; ++k) {
     const StepStats s = sim.step();
-    stats.add_row(stats_row(s));
+    if (writes) stats->add_row(stats_row(s));
+    if (writes) bodies->add_state(s.step, sim);
     if (!s.newton.linear_failure.empty())
       spdlog::warn("step {} (t = {:.4f} s): linear solver ({}) failed at {}", s.step, s.time, settings.linear_solver,
                    s.newton.linear_failure);
@@ -136,16 +165,25 @@ int run_scene(const RunOptions& options) {
                    s.step, s.time, s.newton.iterations, s.newton.failure, s.newton.last_step_speed, settings.tolerance);
     }
     if (sim.time() >= next_frame - 1e-9 * frame_dt || k + 1 == total) {
-      frames.write(sim.time(), frame_of(sim, x0));
-      stats.flush();
+      if (writes) {
+        frames->write(sim.time(), frame_of(sim, x0));
+        stats->flush();
+        if (joints) {
+          add_joint_rows(*joints, sim, s.step);
+          joints->flush();
+        }
+        if (bodies->size() < (std::size_t(8) << 20)) bodies->flush();  // large ones: at the end only
+      }
       next_frame += frame_dt;
     }
-    progress.update(s.step, s.time, s.newton.iterations);
+    if (writes) progress.update(s.step, s.time, s.newton.iterations);
   }
+  if (!writes) return failed ? 3 : 0;
   progress.finish();
-  stats.flush();
-  spdlog::info("wrote {} frames to {}; {} of {} steps did not converge", frames.frame_count(),
-               frames.pvd_path().string(), failed, total);
+  stats->flush();
+  bodies->flush();
+  spdlog::info("wrote {} frames to {}; {} of {} steps did not converge", frames->frame_count(),
+               frames->pvd_path().string(), failed, total);
   return failed ? 3 : 0;
 }
 

@@ -14,8 +14,8 @@ struct RunOptions {
   int threads = 0;               ///< worker threads; 0: all cores
 };
 
-/// Runs a scene, writing frames, stats.csv and scene.resolved.json into the output folder.
-/// Returns the process exit code (0: every step's Newton converged, 3: some did not).
+/// Runs a scene, writing frames, stats.csv, bodies.csv and scene.resolved.json into the output
+/// folder (under MPI: rank 0 only). Returns the process exit code (0: every step's Newton converged, 3: some did not).
 int run_scene(const RunOptions& options);
 
 }  // namespace stiffsoft

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "coupling/joints/joint.hpp"
 #include "libabd/affine_body.hpp"
 
 namespace stiffsoft {
@@ -105,6 +106,7 @@ struct Model {
   SoftNodes nodes;                 ///< soft bodies' nodes and tets
   CollisionMesh mesh;              ///< every body's surface
   std::vector<DofBlock> blocks;    ///< the DOF blocks of q, in order
+  std::vector<JointModel> joints;  ///< joints between bodies (coupling/joints/, docs/joints.md)
   int num_dofs = 0;                ///< size of q
 
   /// Appends a DOF block of `size` DOFs and returns its index.

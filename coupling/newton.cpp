@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "coupling/linear_solver/forcing_term.hpp"
 
@@ -23,14 +24,15 @@ void update_all(const std::vector<EnergyTerm*>& terms, const Configuration& c) {
 /// its diagonal until the factorisation succeeds.
 bool newton_direction(const Model& model, const std::vector<EnergyTerm*>& terms, const Configuration& c,
                       const Eigen::VectorXd& g, LinearSolver& solver, std::vector<std::int64_t>& pattern,
-                      PhaseTimes& times, Eigen::VectorXd& p) {
+                      PhaseTimes& times, const ReducedBasis* basis, Eigen::VectorXd& p) {
   BlockHessian H(model.blocks);
   {
     ScopedTimer timer(times.assembly);
     for (const EnergyTerm* t : terms) t->add_hessian(c, H);
   }
   ScopedTimer timer(times.solve);
-  Eigen::SparseMatrix<double> A = H.upper();
+  Eigen::SparseMatrix<double> A = basis ? basis->reduce_upper(H.upper()) : H.upper();
+  const Eigen::VectorXd b = basis ? Eigen::VectorXd(-basis->reduce(g)) : Eigen::VectorXd(-g);
   std::vector<std::int64_t> new_pattern = H.pattern();
   if (new_pattern != pattern || pattern.empty()) {
     solver.analyze_pattern(A);
@@ -40,7 +42,8 @@ bool newton_direction(const Model& model, const std::vector<EnergyTerm*>& terms,
   const double scale = A.diagonal().cwiseAbs().maxCoeff();
   for (int attempt = 0; attempt < 8; ++attempt) {
     if (solver.factorize(A)) {
-      p = solver.solve(-g);
+      p = solver.solve(b);
+      if (basis && p.allFinite()) p = basis->expand(p);
       if (p.allFinite()) return true;
     }
     const double next = shift == 0 ? 1e-10 * scale : 10 * shift;
@@ -54,7 +57,7 @@ bool newton_direction(const Model& model, const std::vector<EnergyTerm*>& terms,
 
 NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>& terms,
                              Eigen::VectorXd& q, LinearSolver& solver, const NewtonSettings& settings,
-                             PhaseTimes& times) {
+                             PhaseTimes& times, const ReducedBasis* basis) {
   NewtonReport report;
   Eigen::MatrixX3d x = model.surface(q);
   update_all(terms, {q, x});
@@ -62,6 +65,10 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
   std::vector<std::int64_t> pattern;
   Eigen::VectorXd g(q.size()), p(q.size()), q_trial(q.size());
   double eta = 0, g_norm_previous = 0;  // Eisenstat–Walker state
+  if (basis && solver.is_iterative())
+    throw std::invalid_argument("newton_minimize: the " + solver.name() +
+                                " linear solver is iterative, which joints' eliminated equalities do not support; "
+                                "use cholmod");
   if (solver.is_iterative()) {
     std::vector<int> sizes;
     for (const DofBlock& b : model.blocks) sizes.push_back(b.size);
@@ -81,7 +88,7 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
       g_norm_previous = g_norm;
       solver.set_relative_tolerance(eta);
     }
-    const bool solved = newton_direction(model, terms, c, g, solver, pattern, times, p);
+    const bool solved = newton_direction(model, terms, c, g, solver, pattern, times, basis, p);
     const LinearSolveReport& linear = solver.last_report();
     report.linear_iterations += linear.iterations;
     report.linear_fallbacks += linear.fallback_used;

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "coupling/joints/reduced_basis.hpp"
 #include "coupling/linear_solver/linear_solver.hpp"
 #include "coupling/model.hpp"
 #include "coupling/phase_times.hpp"
@@ -38,8 +39,14 @@ struct NewtonReport {
 /// configuration they are evaluated at. With an iterative linear solver the Krylov tolerance
 /// of each solve follows Eisenstat–Walker's forcing terms (linear_solver/forcing_term.hpp);
 /// the stopping rule stays the step-size rule above.
+///
+/// With a reduced basis q = N z + q_p (joints' linear equalities, joints/reduced_basis.hpp),
+/// q must satisfy the equalities on entry; each direction solves (Nᵀ H N) dz = −Nᵀ g and steps
+/// along p = N dz, so every iterate keeps them (to round-off). The line search, CCD and the
+/// stopping rule are unchanged. Krylov backends are not supported with a basis (their DOF
+/// blocks do not survive the elimination): std::invalid_argument.
 NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>& terms,
                              Eigen::VectorXd& q, LinearSolver& solver, const NewtonSettings& settings,
-                             PhaseTimes& times);
+                             PhaseTimes& times, const ReducedBasis* basis = nullptr);
 
 }  // namespace stiffsoft

@@ -1,7 +1,9 @@
 #include "coupling/simulation.hpp"
 
+#include <Eigen/QR>
 #include <chrono>
 #include <limits>
+#include <stdexcept>
 
 #include "libabd/orthogonality_potential.hpp"
 
@@ -30,18 +32,43 @@ BarrierSettings barrier_settings(const Model& model, const SimulationSettings& s
   b.average_mass = n ? mass / n : 1.0;
   return b;
 }
+
+/// The linear solver of the settings; with linear joint equalities "auto" is CHOLMOD (the
+/// reduced system has no DOF blocks for a Krylov backend) and a PETSc backend is an error.
+std::string linear_solver_name(const Model& model, const SimulationSettings& s) {
+  if (linear_joint_constraints(model).rows() == 0) return s.linear_solver;
+  if (s.linear_solver == "auto") return "cholmod";
+  if (s.linear_solver.rfind("petsc", 0) == 0)
+    throw std::invalid_argument("linear solver \"" + s.linear_solver +
+                                "\": scenes with ball, hinge or prismatic joints need a direct solver "
+                                "(cholmod or auto); their eliminated equalities leave no DOF blocks for PETSc");
+  return s.linear_solver;
+}
 }  // namespace
 
 Simulation::Simulation(Model model, const SimulationSettings& settings)
     : m_model(std::move(model)),
       m_settings(settings),
-      m_solver(make_linear_solver(settings.linear_solver)),
+      m_solver(make_linear_solver(linear_solver_name(m_model, settings))),
       m_inertia(m_model, settings.kinematic_weight),
       m_orthogonality(m_model, integrator_beta(settings.integrator) * settings.h * settings.h),
       m_elasticity(m_model, integrator_beta(settings.integrator) * settings.h * settings.h),
-      m_barrier(m_model, barrier_settings(m_model, settings), &m_times) {
+      m_barrier(m_model, barrier_settings(m_model, settings), &m_times),
+      m_constraints(linear_joint_constraints(m_model)),
+      m_joints(m_model, integrator_beta(settings.integrator) * settings.h * settings.h),
+      m_damping(m_model) {
   if (settings.mu > 0) m_friction.emplace(m_model, settings.mu, settings.eps_v * settings.h);
   m_q = m_model.initial_q();
+  if (m_constraints.rows() > 0) {
+    const std::vector<double> violation = joint_violations(m_constraints, m_q, int(m_model.joints.size()));
+    const double tolerance = 1e-9 * std::max(1.0, m_model.bounding_box_diagonal());
+    for (std::size_t j = 0; j < violation.size(); ++j)
+      if (violation[j] > tolerance)
+        throw std::invalid_argument("joint " + m_model.joints[j].name + ": the initial poses violate it by " +
+                                    std::to_string(violation[j]) + " m (expected ≤ " + std::to_string(tolerance) +
+                                    " m)");
+    m_basis.emplace(m_model, m_constraints);
+  }
   m_qdot = m_model.initial_qdot();
   m_q_prev = m_q - settings.h * m_qdot;
   m_qdot_prev = m_qdot;
@@ -85,6 +112,12 @@ StepStats Simulation::step() {
     m_friction->lag(c_n, m_barrier);
     terms.push_back(&*m_friction);
   }
+  if (!m_joints.empty()) terms.push_back(&m_joints);
+  const double beta = integrator_beta(m_settings.integrator);
+  m_damping.start_step(m_q, beta * h);
+  m_damping.lag_contact(c_n, m_barrier, m_settings.contact_damping, beta * h * h);
+  m_damping.lag_joints();
+  if (!m_damping.empty()) terms.push_back(&m_damping);
 
   NewtonSettings ns;
   ns.tolerance = m_settings.tolerance;
@@ -92,7 +125,8 @@ StepStats Simulation::step() {
   ns.max_iterations = m_settings.max_iterations;
   Eigen::VectorXd q_new = initial_guess(q_tilde, c_n);
   StepStats stats;
-  stats.newton = newton_minimize(m_model, terms, q_new, *m_solver, ns, m_times);
+  stats.newton = newton_minimize(m_model, terms, q_new, *m_solver, ns, m_times, reduced_basis());
+  if (m_basis) q_new = m_basis->project(q_new);  // removes round-off drift along the equalities
 
   const Eigen::VectorXd qdot_new = updated_qdot(m_settings.integrator, h, q_new, m_q, m_q_prev);
   m_q_prev = m_q;
@@ -108,6 +142,13 @@ StepStats Simulation::step() {
   stats.contacts = int(m_barrier.constraints().size());
   stats.smallest_distance = m_barrier.min_active_distance({m_q, x});
   stats.kappa = m_barrier.kappa();
+  for (double v : joint_violations(m_constraints, m_q, int(m_model.joints.size())))
+    stats.joint_error = std::max(stats.joint_error, v);
+  if (!m_model.joints.empty()) {
+    for (EnergyTerm* t : terms) t->update({m_q, x});
+    compute_joint_forces(terms, {m_q, x});
+    for (const Eigen::Vector3d& f : m_joint_forces) stats.joint_force = std::max(stats.joint_force, f.norm());
+  }
   for (int i = 0; i < nodes.size(); ++i) {
     if (nodes.motion[i] != Motion::Dynamic) continue;
     const Eigen::Vector3d v = m_qdot.segment<3>(nodes.dof[i]);
@@ -142,8 +183,48 @@ Eigen::VectorXd Simulation::initial_guess(const Eigen::VectorXd& q_tilde, const 
     const Eigen::Vector3d omega = abd::angular_velocity(qb, m_qdot.segment<12>(body.dof));
     q_start.segment<9>(body.dof + 3) = abd::rigid_motion(qb, Eigen::Vector3d::Zero(), omega, m_settings.h).tail<9>();
   }
+  // Joints: onto their linear equalities (qⁿ satisfies them, so the whole segment does), and
+  // not across a joint limit.
+  if (m_basis) q_start = m_basis->project(q_start);
   const Eigen::VectorXd dq = q_start - m_q;
-  return m_q + m_barrier.max_step(c_n, dq, m_model.surface_step(dq)) * dq;
+  const Eigen::MatrixX3d dx = m_model.surface_step(dq);
+  double alpha = m_barrier.max_step(c_n, dq, dx);
+  if (!m_joints.empty()) alpha = std::min(alpha, m_joints.max_step(c_n, alpha * dq, alpha * dx) * alpha);
+  return m_q + alpha * dq;
+}
+
+void Simulation::compute_joint_forces(const std::vector<EnergyTerm*>& terms, const Configuration& c) {
+  const int joints = int(m_model.joints.size());
+  m_joint_forces.assign(joints, Eigen::Vector3d::Zero());
+  const double beta_h2 = integrator_beta(m_settings.integrator) * m_settings.h * m_settings.h;
+  if (m_constraints.rows() > 0) {
+    // ∇E = Cᵀ μ over the columns C touches, in the least-squares sense (redundant rows share).
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(m_q.size());
+    for (const EnergyTerm* t : terms) t->add_gradient(c, g);
+    std::vector<int> columns;
+    for (int col = 0; col < m_constraints.C.outerSize(); ++col)
+      if (m_constraints.C.col(col).nonZeros() > 0) columns.push_back(col);
+    Eigen::MatrixXd Ct(columns.size(), m_constraints.rows());
+    Eigen::VectorXd g_t(columns.size());
+    for (std::size_t j = 0; j < columns.size(); ++j) {
+      Ct.row(j) = Eigen::RowVectorXd(m_constraints.C.col(columns[j]).transpose());
+      g_t[j] = g[columns[j]];
+    }
+    const Eigen::VectorXd mu = Ct.completeOrthogonalDecomposition().solve(g_t);
+    for (int i = 0; i + 2 < m_constraints.rows(); i += 3)
+      if (m_constraints.row_is_point[i]) m_joint_forces[m_constraints.row_joint[i]] += mu.segment<3>(i) / beta_h2;
+  }
+  for (const auto& [p, v] : m_joints.potentials()) {
+    if (p.measure == JointMeasure::HingeAngle) continue;
+    const MeasureValue m = measure_derivatives(p.measure, v.gather(c.q));
+    m_joint_forces[p.joint] -= p.first_derivative(m.s) * m.grad.head<3>();
+  }
+}
+
+std::vector<Eigen::Vector3d> Simulation::joint_positions() const {
+  std::vector<Eigen::Vector3d> x;
+  for (const JointModel& joint : m_model.joints) x.push_back(end_point(m_model, joint.a, joint.a.anchor).value(m_q));
+  return x;
 }
 
 Eigen::MatrixX3d Simulation::contact_forces() const {

@@ -6,13 +6,17 @@
 #include <string>
 
 #include "coupling/integrator.hpp"
+#include "coupling/joints/linear_constraints.hpp"
+#include "coupling/joints/reduced_basis.hpp"
 #include "coupling/linear_solver/linear_solver.hpp"
 #include "coupling/model.hpp"
 #include "coupling/newton.hpp"
 #include "coupling/terms/barrier_term.hpp"
+#include "coupling/terms/damping_term.hpp"
 #include "coupling/terms/elasticity_term.hpp"
 #include "coupling/terms/friction_term.hpp"
 #include "coupling/terms/inertia_term.hpp"
+#include "coupling/terms/joint_term.hpp"
 #include "coupling/terms/orthogonality_term.hpp"
 
 namespace stiffsoft {
@@ -29,8 +33,9 @@ struct SimulationSettings {
   std::optional<double> kappa;                    ///< fixed barrier stiffness; unset: adaptive
   double tolerance = 1e-2;                        ///< Newton's ε_d (m/s)
   int max_iterations = 200;                       ///< Newton iteration cap per step
-  std::string linear_solver = "cholmod";          ///< linear solver backend
+  std::string linear_solver = "auto";             ///< linear solver backend (see make_linear_solver())
   double kinematic_weight = 1e4;                  ///< inertia weight pulling kinematic bodies onto their path
+  double contact_damping = 0;                     ///< lagged Rayleigh damping k_d of contacts (s); 0: none
 };
 
 /// What one step did (a row of stats.csv).
@@ -47,6 +52,8 @@ struct StepStats {
   double elastic_energy = 0;     ///< Σ_e V_e ψ(F_e) of the soft bodies (J)
   int inverted_tets = 0;         ///< soft tetrahedra with det F ≤ 0 at the end of the step
   double kappa = 0;              ///< barrier stiffness at the end of the step
+  double joint_error = 0;        ///< largest violation of the joints' linear equalities at the end of the step (m)
+  double joint_force = 0;        ///< largest joint force magnitude at the end of the step (N), see Simulation::joint_forces()
   PhaseTimes times;              ///< seconds per phase
   double seconds = 0;            ///< wall time of the whole step (s)
 };
@@ -82,6 +89,20 @@ class Simulation {
   Eigen::MatrixX3d node_velocities() const;
   /// Von Mises stress of every soft tetrahedron (Model::nodes.T order), Pa; empty without soft bodies.
   Eigen::VectorXd von_mises() const;
+  /// The joints' linear equalities C q = d (no rows without linear joints).
+  const LinearConstraints& joint_constraints() const { return m_constraints; }
+  /// The change of variables that eliminates them; null without linear joints.
+  const ReducedBasis* reduced_basis() const { return m_basis ? &*m_basis : nullptr; }
+  /// The joints' penalties and limit barriers.
+  const JointTerm& joint_term() const { return m_joints; }
+  /// Force of each joint on its body a at the end of the last step, world frame (N), indexed
+  /// like Model::joints: the multipliers of its eliminated point equalities (least squares
+  /// from the step's optimality, ∇E = Cᵀ μ, force μ / (β h²)) plus its penalty and barrier
+  /// forces. Torque-only parts (hinge ranges, prismatic orientation) are not included. Zero
+  /// before the first step.
+  const std::vector<Eigen::Vector3d>& joint_forces() const { return m_joint_forces; }
+  /// World position of each joint's anchor on body a (m), indexed like Model::joints.
+  std::vector<Eigen::Vector3d> joint_positions() const;
 
  private:
   /// Newton's starting point: every dynamic body moved rigidly (p from q̃, A turned by
@@ -89,6 +110,9 @@ class Simulation {
   /// qⁿ as CCD allows. Starting at qⁿ would make Newton turn a spinning body through linearised
   /// rotations, each of which stretches it against the stiff orthogonality potential.
   Eigen::VectorXd initial_guess(const Eigen::VectorXd& q_tilde, const Configuration& c_n) const;
+  /// Fills m_joint_forces at the end of a step: `terms` are the step's energy terms, already
+  /// updated at q.
+  void compute_joint_forces(const std::vector<EnergyTerm*>& terms, const Configuration& c);
 
   Model m_model;
   SimulationSettings m_settings;
@@ -99,6 +123,11 @@ class Simulation {
   ElasticityTerm m_elasticity;
   BarrierTerm m_barrier;
   std::optional<FrictionTerm> m_friction;
+  LinearConstraints m_constraints;
+  std::optional<ReducedBasis> m_basis;
+  JointTerm m_joints;
+  DampingTerm m_damping;
+  std::vector<Eigen::Vector3d> m_joint_forces;
   Eigen::VectorXd m_q, m_qdot, m_q_prev, m_qdot_prev, m_gravity_q;
   double m_time = 0;
   int m_step = 0;

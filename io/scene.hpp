@@ -29,13 +29,14 @@ struct ContactDescription {
   double mu = 0.0;              ///< Coulomb friction coefficient, ≥ 0; 0 turns friction off
   std::optional<double> eps_v;  ///< static/kinetic smoothing speed ε_v (m/s); default 1e-3 × diagonal / s
   std::optional<double> kappa;  ///< barrier stiffness (Pa·m, fixed); default adaptive (IPC's rule)
+  double damping = 0.0;         ///< lagged Rayleigh damping k_d of contacts (s), ≥ 0; 0: none
 };
 
 /// `solver`: Newton's stopping rule and the linear solver.
 struct SolverDescription {
   std::optional<double> tolerance;  ///< ε_d (m/s): stop when max surface-point step / h < ε_d; default 1e-2 × diagonal / s
   int max_iterations = 200;         ///< Newton iteration cap per step, ≥ 1
-  std::string linear = "cholmod";   ///< linear solver backend
+  std::string linear = "auto";      ///< linear solver backend (see make_linear_solver())
 };
 
 /// `output`: what is written and how often.
@@ -106,6 +107,24 @@ struct BodyDescription {
   std::vector<PathSegment> path;         ///< kinematic: legs of constant velocity followed before velocity/angular_velocity
 };
 
+/// One entry of `joints` (docs/joints.md). Points and axes are given in the world frame at the
+/// initial pose.
+struct JointDescription {
+  std::string name;                                   ///< unique, for errors and output
+  JointKind kind = JointKind::Ball;                   ///< what it constrains
+  std::string body_a;                                 ///< an affine body (dynamic or kinematic)
+  std::string body_b = "world";                       ///< another body, or "world"
+  Eigen::Vector3d anchor = Eigen::Vector3d::Zero();   ///< the joint point, on body a (m)
+  std::optional<Eigen::Vector3d> anchor_b;            ///< distance kinds: the point on body b (m)
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();    ///< hinge and prismatic axis (need not be unit)
+  double stiffness = 1e6;                             ///< penalty stiffness of distance and prismatic joints (N/m)
+  std::optional<double> lower;                        ///< lower limit (rad for hinges, m otherwise); unset: none
+  std::optional<double> upper;                        ///< upper limit (rad for hinges, m otherwise); unset: none
+  double limit_stiffness = 1.0;                       ///< limit barrier stiffness κ (J)
+  double limit_activation = 0.05;                     ///< limit barrier activation gap ĝ (rad or m)
+  double damping = 0.0;                               ///< viscous damping of the free coordinate (N·m·s/rad or N·s/m)
+};
+
 /// A whole scene, every default filled in.
 struct SceneDescription {
   std::string name;         ///< from the file name (stem)
@@ -116,6 +135,7 @@ struct SceneDescription {
   SolverDescription solver;
   OutputDescription output;
   std::vector<BodyDescription> bodies;
+  std::vector<JointDescription> joints;  ///< joints between bodies (may be empty)
 };
 
 }  // namespace stiffsoft

@@ -162,6 +162,90 @@ SurfaceMesh add_soft_body(Model& model, const BodyDescription& desc, TetMesh mes
   return boundary.surface;
 }
 
+/// A unit vector perpendicular to the unit vector n.
+Eigen::Vector3d perpendicular(const Eigen::Vector3d& n) {
+  const Eigen::Vector3d other = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  return n.cross(other).normalized();
+}
+
+/// The joint end of a world point on body `b` (−1: the world) at the initial pose. A soft body
+/// takes its node nearest to the point (the point becomes that node's position).
+JointEnd joint_end(const Model& model, int b, Eigen::Vector3d& point, const Eigen::Vector3d& axis,
+                   const Eigen::Vector3d& reference) {
+  JointEnd end;
+  end.body = b;
+  if (b < 0) {
+    end.anchor = point;
+    end.axis = axis;
+    end.reference = reference;
+    return end;
+  }
+  const BodyModel& body = model.bodies[b];
+  if (body.representation == Representation::Soft) {
+    int best = body.node_begin;
+    for (int i = body.node_begin; i < body.node_end; ++i)
+      if ((model.nodes.X.row(i).transpose() - point).norm() < (model.nodes.X.row(best).transpose() - point).norm())
+        best = i;
+    end.node = best;
+    point = model.nodes.X.row(best).transpose();
+    return end;
+  }
+  const Eigen::Matrix3d A_inv = abd::affine_matrix(body.q0).inverse();
+  end.anchor = A_inv * (point - abd::translation(body.q0));
+  end.axis = A_inv * axis;
+  end.reference = A_inv * reference;
+  return end;
+}
+
+/// The model's joints from the scene's, at the initial pose (so equalities hold there).
+void add_joints(Model& model, const SceneDescription& scene, const std::string& file) {
+  const auto body_index = [&](const std::string& name) {
+    for (int b = 0; b < int(model.bodies.size()); ++b)
+      if (model.bodies[b].name == name) return b;
+    return -1;
+  };
+  for (std::size_t i = 0; i < scene.joints.size(); ++i) {
+    const JointDescription& desc = scene.joints[i];
+    const std::string at = "joints[" + std::to_string(i) + "]";
+    JointModel joint;
+    joint.name = desc.name;
+    joint.kind = desc.kind;
+    const int a = body_index(desc.body_a), b = desc.body_b == "world" ? -1 : body_index(desc.body_b);
+    const BodyModel& body_a = model.bodies[a];
+    if (body_a.representation != Representation::Affine || body_a.motion == Motion::Fixed)
+      throw SceneError(file, at + ".body_a",
+                       "body \"" + body_a.name + "\" is " + motion_name(body_a) +
+                           "; body_a must be an affine body that moves (dynamic or kinematic)");
+    if (b >= 0 && model.bodies[b].representation == Representation::Soft && desc.kind != JointKind::Ball)
+      throw SceneError(file, at + ".body_b",
+                       "body \"" + desc.body_b + "\" is soft; soft bodies take ball joints only (kind is " +
+                           joint_kind_name(desc.kind) + ")");
+    const Eigen::Vector3d axis = desc.axis.normalized();
+    const Eigen::Vector3d reference = perpendicular(axis);
+    Eigen::Vector3d point_b = desc.anchor_b.value_or(desc.anchor);
+    joint.b = joint_end(model, b, point_b, axis, reference);
+    Eigen::Vector3d point_a = joint.b.node >= 0 ? point_b : desc.anchor;
+    joint.a = joint_end(model, a, point_a, axis, reference);
+    const int n = body_a.vertex_end - body_a.vertex_begin;
+    const auto x_bar = model.mesh.x_bar.middleRows(body_a.vertex_begin, n);
+    joint.axis_length = std::max(1e-3, (x_bar.colwise().maxCoeff() - x_bar.colwise().minCoeff()).norm());
+    joint.rest_length = (point_a - point_b).norm();
+    joint.stiffness = desc.stiffness;
+    joint.lower = desc.lower;
+    joint.upper = desc.upper;
+    joint.limit_stiffness = desc.limit_stiffness;
+    joint.limit_activation = desc.limit_activation;
+    joint.damping = desc.damping;
+    if (desc.kind == JointKind::Distance && joint.rest_length <= 0)
+      throw SceneError(file, at + ".anchor_b", "must differ from anchor (a distance joint keeps a positive length)");
+    if (desc.kind == JointKind::BoundedDistance &&
+        ((desc.lower && !(*desc.lower < joint.rest_length)) || (desc.upper && !(*desc.upper > joint.rest_length))))
+      throw SceneError(file, at, "the initial distance " + std::to_string(joint.rest_length) +
+                                     " m must lie strictly between lower and upper");
+    model.joints.push_back(std::move(joint));
+  }
+}
+
 /// The loads that decide `auto` bodies (model_choice.hpp), from every body's surface.
 SceneLoads scene_loads(const SceneDescription& scene, const std::vector<SurfaceMesh>& surfaces) {
   SceneLoads loads;
@@ -222,6 +306,7 @@ Model build_model(const SceneDescription& scene, const std::filesystem::path& fi
   if (const auto overlap = find_overlap(world))
     throw SceneError(file.string(), "bodies",
                      "bodies must start apart (intersection-free), but " + describe(*overlap, names));
+  add_joints(model, scene, file.string());
   return model;
 }
 
@@ -242,6 +327,7 @@ SimulationSettings simulation_settings(const SceneDescription& scene) {
   s.mu = scene.contact.mu;
   s.eps_v = scene.contact.eps_v.value();
   s.kappa = scene.contact.kappa;
+  s.contact_damping = scene.contact.damping;
   s.tolerance = scene.solver.tolerance.value();
   s.max_iterations = scene.solver.max_iterations;
   s.linear_solver = scene.solver.linear;

@@ -1,9 +1,12 @@
 #include "io/scene_loader.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <unordered_map>
+
+#include "coupling/linear_solver/linear_solver.hpp"
 
 namespace stiffsoft {
 
@@ -113,8 +116,80 @@ MeshDescription mesh_from(const Json& mesh) {
   return out;
 }
 
+const char* const kJointKindNames[] = {"ball", "hinge", "prismatic", "distance", "bounded_distance"};
+
+JointKind joint_kind_from(const std::string& name) {
+  for (int k = 0; k < 5; ++k)
+    if (name == kJointKindNames[k]) return JointKind(k);
+  return JointKind::Ball;
+}
+
+JointDescription joint_from(const Json& j) {
+  JointDescription out;
+  out.name = j.at("name").get<std::string>();
+  out.kind = joint_kind_from(j.at("kind").get<std::string>());
+  out.body_a = j.at("body_a").get<std::string>();
+  out.body_b = j.at("body_b").get<std::string>();
+  out.anchor = vector3(j.at("anchor"));
+  if (j.contains("anchor_b") && !j["anchor_b"].is_null()) out.anchor_b = vector3(j["anchor_b"]);
+  if (j.contains("axis")) out.axis = vector3(j["axis"]);
+  if (j.contains("stiffness")) out.stiffness = j["stiffness"].get<double>();
+  if (j.contains("lower")) out.lower = optional_number(j["lower"]);
+  if (j.contains("upper")) out.upper = optional_number(j["upper"]);
+  if (j.contains("limit_stiffness")) out.limit_stiffness = j["limit_stiffness"].get<double>();
+  if (j.contains("limit_activation")) out.limit_activation = j["limit_activation"].get<double>();
+  if (j.contains("damping")) out.damping = j["damping"].get<double>();
+  return out;
+}
+
+// Joints: unique names, existing and distinct bodies, usable axes and limits.
+void check_joint_relations(const Json& scene, const std::string& file,
+                           const std::unordered_map<std::string, std::size_t>& bodies) {
+  std::unordered_map<std::string, std::size_t> first_use;
+  const Json& joints = scene.at("joints");
+  for (std::size_t i = 0; i < joints.size(); ++i) {
+    const std::string at = "joints[" + std::to_string(i) + "]";
+    const JointDescription j = joint_from(joints[i]);
+    if (j.name.empty()) throw SceneError(file, at + ".name", "must not be empty");
+    const auto [it, inserted] = first_use.emplace(j.name, i);
+    if (!inserted)
+      throw SceneError(file, at + ".name",
+                       "duplicate joint name \"" + j.name + "\" (also used by joints[" + std::to_string(it->second) +
+                           "]); names must be unique");
+    if (!bodies.count(j.body_a))
+      throw SceneError(file, at + ".body_a", "no body is named \"" + j.body_a + "\"");
+    if (j.body_b != "world" && !bodies.count(j.body_b))
+      throw SceneError(file, at + ".body_b", "no body is named \"" + j.body_b + "\" (nor is it \"world\")");
+    if (j.body_b == j.body_a) throw SceneError(file, at + ".body_b", "must differ from body_a (\"" + j.body_a + "\")");
+    if ((j.kind == JointKind::Hinge || j.kind == JointKind::Prismatic) && j.axis.norm() == 0)
+      throw SceneError(file, at + ".axis", "must not be zero");
+    if ((j.kind == JointKind::Distance || j.kind == JointKind::BoundedDistance) && !j.anchor_b)
+      throw SceneError(file, at + ".anchor_b", "required for kind \"" + std::string(kJointKindNames[int(j.kind)]) + "\"");
+    if (j.kind == JointKind::BoundedDistance && !j.lower && !j.upper)
+      throw SceneError(file, at, "a bounded_distance joint needs lower, upper or both");
+    if (j.lower && j.upper && !(*j.lower < *j.upper))
+      throw SceneError(file, at + ".upper", "must be > lower (" + std::to_string(*j.lower) + ") (got " +
+                                                std::to_string(*j.upper) + ")");
+    if (j.kind == JointKind::Hinge || j.kind == JointKind::Prismatic) {
+      const double low = j.kind == JointKind::Hinge ? -M_PI : -1e300, high = j.kind == JointKind::Hinge ? M_PI : 1e300;
+      const char* unit = j.kind == JointKind::Hinge ? " rad; the initial pose is angle 0" : " m; the initial pose is slide 0";
+      if (j.lower && !(*j.lower < 0 && *j.lower > low))
+        throw SceneError(file, at + ".lower", "must be < 0" + std::string(j.kind == JointKind::Hinge ? " and > −π" : "") +
+                                                  " (got " + std::to_string(*j.lower) + unit + ")");
+      if (j.upper && !(*j.upper > 0 && *j.upper < high))
+        throw SceneError(file, at + ".upper", "must be > 0" + std::string(j.kind == JointKind::Hinge ? " and < π" : "") +
+                                                  " (got " + std::to_string(*j.upper) + unit + ")");
+    }
+  }
+}
+
 // What a schema entry cannot express: relations between values.
 void check_relations(const Json& scene, const std::string& file) {
+  try {
+    check_linear_solver_name(scene.at("solver").at("linear").get<std::string>());
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(file, "solver.linear", e.what());
+  }
   std::unordered_map<std::string, std::size_t> first_use;
   const Json& bodies = scene.at("bodies");
   for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -133,6 +208,7 @@ void check_relations(const Json& scene, const std::string& file) {
                        "must be < radius (" + mesh.at("radius").dump() + ") (got " + mesh.at("minor_radius").dump() +
                            ")");
   }
+  check_joint_relations(scene, file, first_use);
 }
 
 SceneDescription scene_from(const Json& scene, const std::string& name) {
@@ -152,6 +228,7 @@ SceneDescription scene_from(const Json& scene, const std::string& name) {
   out.contact.mu = contact.at("mu").get<double>();
   out.contact.eps_v = optional_number(contact.at("eps_v"));
   out.contact.kappa = optional_number(contact.at("kappa"));
+  out.contact.damping = contact.at("damping").get<double>();
 
   const Json& solver = scene.at("solver");
   out.solver.tolerance = optional_number(solver.at("tolerance"));
@@ -186,6 +263,7 @@ SceneDescription scene_from(const Json& scene, const std::string& name) {
                           vector3(leg.at("angular_velocity"))});
     out.bodies.push_back(std::move(b));
   }
+  for (const Json& joint : scene.at("joints")) out.joints.push_back(joint_from(joint));
   return out;
 }
 
@@ -264,7 +342,8 @@ nlohmann::json resolved_scene_json(const SceneDescription& scene) {
   out["contact"] = {{"dhat", optional_json(scene.contact.dhat)},
                     {"mu", scene.contact.mu},
                     {"eps_v", optional_json(scene.contact.eps_v)},
-                    {"kappa", optional_json(scene.contact.kappa)}};
+                    {"kappa", optional_json(scene.contact.kappa)},
+                    {"damping", scene.contact.damping}};
   out["solver"] = {{"tolerance", optional_json(scene.solver.tolerance)},
                    {"max_iterations", scene.solver.max_iterations},
                    {"linear", scene.solver.linear}};
@@ -327,6 +406,28 @@ nlohmann::json resolved_scene_json(const SceneDescription& scene) {
                              {"angular_velocity", vector_json(leg.angular_velocity)}});
     }
     out["bodies"].push_back(b);
+  }
+  out["joints"] = Json::array();
+  for (const JointDescription& joint : scene.joints) {
+    const JointKind k = joint.kind;
+    const bool distance = k == JointKind::Distance || k == JointKind::BoundedDistance;
+    const bool limited = k == JointKind::Hinge || k == JointKind::Prismatic || k == JointKind::BoundedDistance;
+    Json j = {{"name", joint.name},
+              {"kind", kJointKindNames[int(k)]},
+              {"body_a", joint.body_a},
+              {"body_b", joint.body_b},
+              {"anchor", vector_json(joint.anchor)}};
+    if (distance) j["anchor_b"] = joint.anchor_b ? vector_json(*joint.anchor_b) : Json(nullptr);
+    if (k == JointKind::Hinge || k == JointKind::Prismatic) j["axis"] = vector_json(joint.axis);
+    if (k == JointKind::Prismatic || k == JointKind::Distance) j["stiffness"] = joint.stiffness;
+    if (limited) {
+      j["lower"] = optional_json(joint.lower);
+      j["upper"] = optional_json(joint.upper);
+      j["limit_stiffness"] = joint.limit_stiffness;
+      j["limit_activation"] = joint.limit_activation;
+    }
+    if (k != JointKind::Ball) j["damping"] = joint.damping;
+    out["joints"].push_back(j);
   }
   return nlohmann::json(out);
 }

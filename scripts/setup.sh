@@ -6,6 +6,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libsuitesparse-dev petsc-dev libgmsh-dev libcgal-dev libvtk9-dev
   libtbb-dev nlohmann-json3-dev libcli11-dev libspdlog-dev googletest libgtest-dev
+  python3-matplotlib
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -84,7 +84,7 @@ double BarrierTerm::max_step(const Configuration& c, const Eigen::VectorXd&, con
       tbb::blocked_range<size_t>(0, candidates.vertex_face.size()), 1.0,
       [&](const tbb::blocked_range<size_t>& r, double alpha) {
         ccd::CcdSettings s;
-        for (size_t k = r.begin(); k < r.end(); ++k) {
+        for (size_t k = r.begin(); k < r.end() && alpha > 0; ++k) {  // α = 0: nothing can lower it
           const auto [v, f] = candidates.vertex_face[k];
           s.t_max = alpha;
           alpha = std::min(alpha, ccd::point_triangle_toi(
@@ -99,7 +99,7 @@ double BarrierTerm::max_step(const Configuration& c, const Eigen::VectorXd&, con
       tbb::blocked_range<size_t>(0, candidates.edge_edge.size()), alpha_vf,
       [&](const tbb::blocked_range<size_t>& r, double alpha) {
         ccd::CcdSettings s;
-        for (size_t k = r.begin(); k < r.end(); ++k) {
+        for (size_t k = r.begin(); k < r.end() && alpha > 0; ++k) {
           const auto [ea, eb] = candidates.edge_edge[k];
           s.t_max = alpha;
           alpha = std::min(alpha, ccd::edge_edge_toi(

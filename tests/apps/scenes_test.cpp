@@ -46,7 +46,12 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene,
                                            SceneCase{"medium", 10}, SceneCase{"full", 3},
                                            SceneCase{"soft_ball_on_boxes", 60}, SceneCase{"cube_on_mattress", 40},
                                            SceneCase{"beam_with_blocks", 30}, SceneCase{"mixed_pile", 20},
-                                           SceneCase{"squash_recover", 20}),
+                                           SceneCase{"squash_recover", 20}, SceneCase{"pendulum", 40},
+                                           SceneCase{"double_pendulum", 40}, SceneCase{"chain", 40},
+                                           SceneCase{"top_slow", 40}, SceneCase{"top_medium", 40}, SceneCase{"top_fast", 40},
+                                           SceneCase{"door_and_ball", 40}, SceneCase{"hanging_bridge", 30},
+                                           SceneCase{"umbrella", 40}, SceneCase{"ragdoll_steps", 30},
+                                           SceneCase{"slider_spring_rope", 60}),
                          [](const auto& info) { return info.param.name; });
 
 namespace {

@@ -49,7 +49,8 @@ const BrokenCase kBroken[] = {
     {"root_not_object.json", "(root): must be an object (got an array of 2)"},
     {"zero_max_iterations.json", "solver.max_iterations: must be >= 1 (got 0)"},
     {"empty_body_name.json", "bodies[0].name: must not be empty"},
-    {"unknown_linear_solver.json", "solver.linear: unknown value \"magic\" (allowed: cholmod)"},
+    {"unknown_linear_solver.json", "solver.linear: unknown linear solver 'magic' (available: cholmod, auto, petsc"},
+    {"unknown_preconditioner.json", "solver.linear: PETSc backend: unknown preconditioner 'ilu' (available: none, jacobi"},
 };
 
 TEST(SceneLoader, EveryBrokenSceneGivesASceneErrorNamingFileAndJsonPath) {
@@ -193,7 +194,7 @@ TEST(SceneLoader, DefaultsAreFilledFromTheSchema) {
   EXPECT_FALSE(s.contact.kappa.has_value());
   EXPECT_FALSE(s.solver.tolerance.has_value());
   EXPECT_EQ(s.solver.max_iterations, 200);
-  EXPECT_EQ(s.solver.linear, "cholmod");
+  EXPECT_EQ(s.solver.linear, "auto");
   EXPECT_FALSE(s.output.frame_dt.has_value());
   ASSERT_EQ(s.bodies.size(), 1u);
   const BodyDescription& b = s.bodies[0];

@@ -1,0 +1,85 @@
+#include "coupling/terms/damping_term.hpp"
+
+#include <cmath>
+
+#include "coupling/contact/barrier_potential.hpp"
+#include "coupling/joints/joint_measures.hpp"
+
+namespace stiffsoft {
+
+void DampingTerm::start_step(const Eigen::VectorXd& q_n, double beta_h) {
+  m_q_n = q_n;
+  m_beta_h = beta_h;
+  m_contacts.clear();
+  m_joints.clear();
+}
+
+void DampingTerm::lag_contact(const Configuration& c_n, const BarrierTerm& barrier, double k_d, double beta_h2) {
+  if (k_d <= 0) return;
+  // K = k_d ∇²B with B = (barrier value)/(β h²); times β h for the incremental potential.
+  const double weight = m_beta_h * k_d / beta_h2;
+  for (const ContactConstraint& k : barrier.constraints()) {
+    const contact::Vector12d x_n = gather(c_n.x, k.vertices);
+    const contact::Matrix12d H =
+        barrier.kappa() * k.weight * contact::barrier_potential_hessian(k.stencil, x_n, barrier.dhat(), true);
+    m_contacts.push_back({StencilJacobian(m_model, k.vertices), k.vertices, weight * H, x_n});
+  }
+}
+
+void DampingTerm::lag_joints() {
+  for (const JointModel& joint : m_model.joints) {
+    if (joint.damping <= 0) continue;
+    JointMeasure measure = JointMeasure::Distance;
+    std::vector<JointVector> vectors;
+    const JointVector xa = end_point(m_model, joint.a, joint.a.anchor), xb = end_point(m_model, joint.b, joint.b.anchor);
+    switch (joint.kind) {
+      case JointKind::Hinge:
+        measure = JointMeasure::HingeAngle;
+        vectors = {end_direction(m_model, joint.a, joint.a.reference), end_direction(m_model, joint.b, joint.b.reference),
+                   end_direction(m_model, joint.a, joint.a.axis)};
+        break;
+      case JointKind::Prismatic:
+        measure = JointMeasure::Slide;
+        vectors = {xa, xb, end_direction(m_model, joint.b, joint.b.axis)};
+        break;
+      case JointKind::Distance:
+      case JointKind::BoundedDistance: vectors = {xa, xb}; break;
+      case JointKind::Ball: continue;  // rejected by the scene builder
+    }
+    JointVectors stack(std::move(vectors));
+    const Eigen::VectorXd y_n = stack.gather(m_q_n);
+    const MeasureValue m = measure_derivatives(measure, y_n);
+    m_joints.push_back({std::move(stack), std::sqrt(m_beta_h * joint.damping) * m.grad, y_n});
+  }
+}
+
+double DampingTerm::value(const Configuration& c) const {
+  double e = 0;
+  for (const ContactElement& k : m_contacts) {
+    const contact::Vector12d dx = gather(c.x, k.vertices) - k.x_n;
+    e += 0.5 * dx.dot(k.K * dx);
+  }
+  for (const JointElement& j : m_joints) {
+    const double r = j.w.dot(j.vectors.gather(c.q) - j.y_n);
+    e += 0.5 * r * r;
+  }
+  return e;
+}
+
+void DampingTerm::add_gradient(const Configuration& c, Eigen::VectorXd& g) const {
+  for (const ContactElement& k : m_contacts) {
+    const contact::Vector12d dx = gather(c.x, k.vertices) - k.x_n;
+    k.J.scatter_gradient(k.K * dx, g);
+  }
+  for (const JointElement& j : m_joints) {
+    const double r = j.w.dot(j.vectors.gather(c.q) - j.y_n);
+    j.vectors.scatter_gradient(r * j.w, g);
+  }
+}
+
+void DampingTerm::add_hessian(const Configuration&, BlockHessian& H) const {
+  for (const ContactElement& k : m_contacts) k.J.scatter_hessian(k.K, H);
+  for (const JointElement& j : m_joints) j.vectors.scatter_hessian(j.w * j.w.transpose(), H);
+}
+
+}  // namespace stiffsoft

@@ -1,0 +1,64 @@
+#pragma once
+/// @file Lagged Rayleigh damping (Chen, Li et al. 2022): a dissipation ½ νᵀ K ν with ν the
+/// velocity and K a PSD matrix frozen at the step's start xⁿ,
+///  - contact: K = k_d ∇²B(xⁿ), B the contact barrier energy (J), k_d (s) per scene;
+///  - joints: K = c ∇s(xⁿ) ∇s(xⁿ)ᵀ, s the joint's free coordinate (hinge angle, prismatic slide,
+///    distance), c per joint (N·m·s/rad or N·s/m): a viscous damper on that coordinate, i.e.
+///    Rayleigh damping of the potential ½ s² with k_d = c.
+/// With ν = (q − qⁿ)/h the damping force is −K ν, which enters the incremental potential as
+/// ½ β h (q − qⁿ)ᵀ K (q − qⁿ) (gradient β h² K ν).
+
+#include <vector>
+
+#include "coupling/joints/joint_vectors.hpp"
+#include "coupling/model.hpp"
+#include "coupling/stencil_jacobian.hpp"
+#include "coupling/terms/barrier_term.hpp"
+#include "coupling/terms/energy_term.hpp"
+
+namespace stiffsoft {
+
+/// The lagged damping of one step, contact and joints together.
+class DampingTerm final : public EnergyTerm {
+ public:
+  /// An empty term over the model.
+  explicit DampingTerm(const Model& model) : m_model(model) {}
+  /// See EnergyTerm::name.
+  const char* name() const override { return "damping"; }
+  /// Forgets the last step's matrices; `q_n` (DOFs at the step's start) and the incremental
+  /// weight β h (s) of the step to come.
+  void start_step(const Eigen::VectorXd& q_n, double beta_h);
+  /// Adds contact damping k_d ∇²B(xⁿ) over the barrier's active contacts at c_n. `barrier`
+  /// is the barrier term (value in units of β h² × energy); k_d in s.
+  void lag_contact(const Configuration& c_n, const BarrierTerm& barrier, double k_d, double beta_h2);
+  /// Adds the damping of every joint with damping c > 0, at q_n.
+  void lag_joints();
+  /// True when nothing is damped this step.
+  bool empty() const { return m_contacts.empty() && m_joints.empty(); }
+  /// See EnergyTerm::value.
+  double value(const Configuration& c) const override;
+  /// See EnergyTerm::add_gradient.
+  void add_gradient(const Configuration& c, Eigen::VectorXd& g) const override;
+  /// See EnergyTerm::add_hessian.
+  void add_hessian(const Configuration& c, BlockHessian& H) const override;
+
+ private:
+  struct ContactElement {
+    StencilJacobian J;
+    std::array<int, 4> vertices;
+    Eigen::Matrix<double, 12, 12> K;  // β h k_d ∇²B (already weighted)
+    Eigen::Matrix<double, 12, 1> x_n;
+  };
+  struct JointElement {
+    JointVectors vectors;
+    Eigen::VectorXd w;  // √(β h c) ∇s at qⁿ: the element is ½ (w·Δy)²
+    Eigen::VectorXd y_n;
+  };
+  const Model& m_model;
+  Eigen::VectorXd m_q_n;
+  double m_beta_h = 0;
+  std::vector<ContactElement> m_contacts;
+  std::vector<JointElement> m_joints;
+};
+
+}  // namespace stiffsoft
