@@ -26,5 +26,8 @@ bench="$BUILD_DIR/bench/peer_bench"
 [ -x "$bench" ] || { echo "compare_peers: $bench was not built (are Bullet/MuJoCo installed? scripts/setup_bench.sh)" >&2; exit 1; }
 "$bench" --verify --scenes light,house_of_cards,wrecking_ball,chain_net | tee "$OUT/verify.txt"
 "$bench" --threads "$THREADS" --csv "$OUT/peers.csv" "$@" | tee "$OUT/peers.log"
-python3 bench/peers/report_peers.py "$OUT/peers.csv" --markdown "$OUT/peers.md" --plot "$OUT/peers_h240.png"
+# Debian's python3 has python3-matplotlib; a python3 earlier on PATH may not.
+PY=python3
+[ -x /usr/bin/python3 ] && PY=/usr/bin/python3
+"$PY" bench/peers/report_peers.py "$OUT/peers.csv" --markdown "$OUT/peers.md" --plot "$OUT/peers_h240.png"
 echo "compare_peers: results in $OUT (peers.csv, peers.md, peers_h240.png)"

@@ -20,9 +20,10 @@ void write_csv_header(std::ostream& out, const Machine& machine, int threads) {
       << "# date: " << machine.date << "\n"
       << "# threads: stiffsoft " << threads << " (TBB), Bullet 1, MuJoCo 1\n"
       << "engine,scene,bodies,dynamic_bodies,triangles,dt,steps,duration_s,ms_median,ms_mean,wall_s,newton_mean,"
-         "unconverged,broad_phase_ms,ccd_ms,assembly_ms,solve_ms,smallest_distance_m,max_engine_depth_m,"
-         "max_surface_depth_m,deep_contacts,frames_checked,frames_intersecting,tunnelling_events,tunnelled,"
-         "tunnel_note,first_intersection,deepest_pair,warnings,threads,load_before,load_after,settings\n";
+         "unconverged,broad_phase_ms,ccd_ms,assembly_ms,solve_ms,smallest_distance_m,frames_checked,"
+         "frames_intersecting,max_overlap_m,max_overlap_where,max_engine_depth_m,engine_depth_where,"
+         "tunnelling_events,tunnelled,tunnel_note,first_intersection,warnings,statistics,threads,load_before,"
+         "load_after,settings\n";
 }
 
 void write_csv_row(std::ostream& out, const RunResult& r) {
@@ -32,11 +33,11 @@ void write_csv_row(std::ostream& out, const RunResult& r) {
       << ',' << r.wall_s << ',' << r.newton_mean << ',' << r.unconverged << ',' << r.broad_phase_ms << ',' << r.ccd_ms
       << ',' << r.assembly_ms << ',' << r.solve_ms << ',';
   if (std::isfinite(a.smallest_distance)) out << a.smallest_distance;
-  out << ',' << a.max_engine_depth << ',' << a.max_surface_depth << ',' << a.deep_contacts << ',' << a.frames_checked
-      << ',' << a.frames_intersecting << ',' << a.tunnelling_events << ',' << (a.tunnelled ? 1 : 0) << ','
-      << quoted(a.tunnel_note) << ',' << quoted(a.first_intersection) << ',' << quoted(a.deepest_pair) << ','
-      << quoted(r.warnings) << ',' << r.threads << ',' << r.load_before << ',' << r.load_after << ','
-      << quoted(r.settings) << '\n';
+  out << ',' << a.frames_checked << ',' << a.frames_intersecting << ',' << a.max_overlap << ','
+      << quoted(a.max_overlap_where) << ',' << a.max_engine_depth << ',' << quoted(a.engine_depth_where) << ','
+      << a.tunnelling_events << ',' << (a.tunnelled ? 1 : 0) << ',' << quoted(a.tunnel_note) << ','
+      << quoted(a.first_intersection) << ',' << quoted(r.warnings) << ',' << quoted(r.statistics) << ',' << r.threads
+      << ',' << r.load_before << ',' << r.load_after << ',' << quoted(r.settings) << '\n';
   out.flush();
 }
 

@@ -64,10 +64,15 @@ class Engine {
   /// hull points, box corners, mesh vertices): for checking that the engine holds the same
   /// geometry in the same place as stiffsoft.
   virtual Eigen::MatrixX3d collision_vertices(int b) const = 0;
+  /// False when the engine holds only part of body b's surface (MuJoCo's ground plane: the top
+  /// face), so that collision_vertices(b) covers only some of its vertices.
+  virtual bool whole_surface(int b) const { return b >= 0; }
   /// Details of the last step.
   virtual StepDetails details() const { return {}; }
   /// Problems the engine flagged during the run (overflowing contact buffers, resets); empty if none.
   virtual std::string warnings() const { return ""; }
+  /// Counters of the run worth recording (MuJoCo: peak contacts and constraint rows); may be empty.
+  virtual std::string statistics() const { return ""; }
 };
 
 }  // namespace stiffsoft::peers

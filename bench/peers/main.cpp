@@ -91,10 +91,11 @@ int main(int argc, char** argv) {
           std::printf("%-9s %-14s h = %-6s %5d steps  %9.3f ms/step", r.engine.c_str(), r.scene.c_str(),
                       dt_text.c_str(), r.steps, r.ms_median);
           if (r.newton_mean >= 0) std::printf("  %.2f it.", r.newton_mean);
-          std::printf("  intersecting frames %d/%d  max depth %s  %s%s\n", a.frames_intersecting, a.frames_checked,
-                      millimetres(a.max_surface_depth).c_str(), a.tunnelled ? "TUNNELLED: " : "no tunnelling",
-                      a.tunnel_note.c_str());
+          std::printf("  intersecting frames %d/%d  overlap %s  engine depth %s  %s%s\n", a.frames_intersecting,
+                      a.frames_checked, millimetres(a.max_overlap).c_str(), millimetres(a.max_engine_depth).c_str(),
+                      a.tunnelled ? "TUNNELLED: " : "no tunnelling", a.tunnel_note.c_str());
           if (!r.warnings.empty()) std::printf("          warnings: %s\n", r.warnings.c_str());
+          if (!r.statistics.empty()) std::printf("          %s\n", r.statistics.c_str());
           std::fflush(stdout);
         }
       }

@@ -1,6 +1,7 @@
 #include "peers/mjcf.hpp"
 
 #include <Eigen/Geometry>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
@@ -57,6 +58,12 @@ class MeshAssets {
 
 }  // namespace
 
+bool ground_is_plane(const PeerScene& scene, int body) {
+  if (body != scene.ground || !scene.bodies[size_t(body)].box) return false;
+  const Eigen::Vector3d up = -scene.gravity.normalized();
+  return (scene.bodies[size_t(body)].R0.col(1) - up).norm() < 1e-9;
+}
+
 int body_of_geom_name(const char* name) {
   if (!name || name[0] != 'b') return -1;
   char* end = nullptr;
@@ -73,6 +80,15 @@ std::string make_mjcf(const PeerScene& scene, const MjcfSizes& sizes) {
     tag += std::to_string(i);
     // The body's geoms, in the body frame (x̄, centred at the centre of mass).
     std::vector<std::string> geoms;
+    if (ground_is_plane(scene, int(i))) {
+      // A plane through the top face (MuJoCo's plane normal is its local z; turn it to the body's y).
+      const Eigen::Matrix3d R = body.R0 * Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();
+      const Eigen::Vector3d top = body.c0 + body.R0 * Eigen::Vector3d(0, 0.5 * body.box->y(), 0);
+      const Eigen::Vector3d size(0.5 * body.box->x(), 0.5 * body.box->z(), 1.0);
+      world << "    <geom name=\"" << tag << "_0\" type=\"plane\" size=\"" << vec(size) << "\" pos=\"" << vec(top)
+            << "\" quat=\"" << quat(R) << "\"/>\n";
+      continue;
+    }
     if (body.fixed && body.box) {
       geoms.push_back("type=\"box\" size=\"" + vec(0.5 * *body.box) + "\"");
     } else if (body.convex) {

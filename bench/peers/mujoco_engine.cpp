@@ -39,6 +39,7 @@ MujocoEngine::MujocoEngine(const PeerScene& scene, const MjcfSizes& sizes) : m_s
   m_geom_owner.resize(size_t(m_model->ngeom));
   for (int g = 0; g < m_model->ngeom; ++g) m_geom_owner[size_t(g)] = body_of_geom_name(m_model->names + m_model->name_geomadr[g]);
   m_body.assign(scene.bodies.size(), 0);
+  if (scene.ground >= 0 && ground_is_plane(scene, scene.ground)) m_plane = scene.ground;
   m_fixed.resize(scene.bodies.size());
   for (size_t i = 0; i < scene.bodies.size(); ++i) {
     const PeerBody& body = scene.bodies[i];
@@ -138,7 +139,11 @@ Eigen::MatrixX3d MujocoEngine::collision_vertices(int b) const {
     if (m_geom_owner[size_t(g)] != b) continue;
     const Eigen::Matrix3d R = matrix(m_data->geom_xmat + 9 * g);
     const Eigen::Vector3d p(m_data->geom_xpos[3 * g], m_data->geom_xpos[3 * g + 1], m_data->geom_xpos[3 * g + 2]);
-    if (m_model->geom_type[g] == mjGEOM_BOX) {
+    if (m_model->geom_type[g] == mjGEOM_PLANE) {
+      // The ground's top face: the plane's rectangle (it collides as a half-space).
+      const mjtNum* s = m_model->geom_size + 3 * g;
+      for (int i = 0; i < 4; ++i) points.push_back(R * Eigen::Vector3d((i & 1) ? s[0] : -s[0], (i & 2) ? s[1] : -s[1], 0) + p);
+    } else if (m_model->geom_type[g] == mjGEOM_BOX) {
       const mjtNum* s = m_model->geom_size + 3 * g;
       for (int i = 0; i < 8; ++i)
         points.push_back(R * Eigen::Vector3d((i & 1) ? s[0] : -s[0], (i & 2) ? s[1] : -s[1], (i & 4) ? s[2] : -s[2]) + p);
@@ -152,6 +157,11 @@ Eigen::MatrixX3d MujocoEngine::collision_vertices(int b) const {
   Eigen::MatrixX3d world(Eigen::Index(points.size()), 3);
   for (size_t i = 0; i < points.size(); ++i) world.row(Eigen::Index(i)) = points[i].transpose();
   return world;
+}
+
+std::string MujocoEngine::statistics() const {
+  return "peak " + std::to_string(m_peak_contacts) + " contacts (nconmax " + std::to_string(m_sizes.nconmax) + "), " +
+         std::to_string(m_peak_rows) + " constraint rows (njmax " + std::to_string(m_sizes.njmax) + ")";
 }
 
 std::string MujocoEngine::warnings() const {

@@ -36,9 +36,10 @@ class MujocoEngine final : public Engine {
   Pose pose(int b) const override;
   Twist twist(int b) const override;
   Eigen::MatrixX3d collision_vertices(int b) const override;
+  bool whole_surface(int b) const override { return b != m_plane; }
   std::string warnings() const override;
-  /// Largest number of contacts and of constraint rows seen after any step.
-  std::pair<int, int> peak_buffers() const { return {m_peak_contacts, m_peak_rows}; }
+  /// Largest number of contacts and of constraint rows seen after any step, and the buffer sizes.
+  std::string statistics() const override;
 
  private:
   mjModel_* m_model = nullptr;
@@ -47,6 +48,7 @@ class MujocoEngine final : public Engine {
   std::vector<int> m_body;        ///< scene body → MuJoCo body id (0 for fixed bodies)
   std::vector<int> m_geom_owner;  ///< MuJoCo geom → scene body
   std::vector<Pose> m_fixed;      ///< poses of fixed bodies (index = scene body)
+  int m_plane = -1;               ///< the scene body that is a ground plane, −1 if none
   int m_peak_contacts = 0, m_peak_rows = 0;
   /// mj_step leaves xpos/xmat at the state before its integration; true until mj_kinematics
   /// has brought them to the current qpos.

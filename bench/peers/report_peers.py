@@ -65,11 +65,13 @@ def accuracy(row):
         return "–"
     checked, bad = int(row["frames_checked"]), int(row["frames_intersecting"])
     frames = f"{bad}/{checked} frames intersect"
+    tunnel = "**tunnelled**" if row["tunnelled"] == "1" else "no tunnelling"
     if row["engine"] == "stiffsoft":
         d = num(row, "smallest_distance_m")
-        return f"min. distance {mm(d)} mm; {frames}" if not math.isnan(d) else f"no contact; {frames}"
-    tunnel = "**tunnelled**" if row["tunnelled"] == "1" else "no tunnelling"
-    return f"depth ≤ {mm(num(row, 'max_surface_depth_m'))} mm; {frames}; {tunnel}"
+        distance = f"min. distance {mm(d)} mm" if not math.isnan(d) else "no contact"
+        return f"{distance}; {frames}; {tunnel}"
+    return (f"overlap {mm(num(row, 'max_overlap_m'))} mm (engine: {mm(num(row, 'max_engine_depth_m'))} mm); "
+            f"{frames}; {tunnel}")
 
 
 def markdown(rows, comments):
@@ -107,10 +109,10 @@ def markdown(rows, comments):
                 cells.append(fmt(ratio) + "×" if not math.isnan(ratio) else "–")
         out.append("| " + " | ".join(cells) + " |")
 
-    out += ["", "Accuracy (same runs): stiffsoft's smallest contact distance and the exact intersection check "
-            "of its frames; for the peers the deepest penetration of the bodies' surfaces their own contacts "
-            "reported, the same exact check on the stiffsoft surfaces at their poses, and whether a body tunnelled "
-            "(see the definitions above).", ""]
+    out += ["", "Accuracy (same runs, definitions above): stiffsoft's smallest contact distance; for the peers "
+            "the deepest overlap of one body's vertex inside another on the checked frames (and, in brackets, the "
+            "deepest penetration their own contacts reported); for all, the exact intersection check of the checked "
+            "frames and whether a body tunnelled.", ""]
     head = ["scene", "h"] + [LABEL[e] for e in engines]
     out.append("| " + " | ".join(head) + " |")
     out.append("|" + "---|" * len(head))
@@ -118,11 +120,12 @@ def markdown(rows, comments):
         out.append("| " + " | ".join([scene, f"1/{per_s}"] + [accuracy(rows.get((e, scene, per_s))) for e in engines]) + " |")
 
     notes = [(k, r) for k, r in sorted(rows.items(), key=lambda kv: (scene_key(kv[0][1]), kv[0][2], kv[0][0]))
-             if r["tunnel_note"] or r["warnings"]]
+             if r["tunnel_note"] or r["warnings"] or r.get("statistics")]
     if notes:
-        out += ["", "First tunnelling event and engine warnings per run:", ""]
+        out += ["", "First tunnelling finding, engine warnings and MuJoCo's buffer use per run:", ""]
         for (e, s, p), r in notes:
-            text = "; ".join(x for x in (r["tunnel_note"], ("warnings: " + r["warnings"]) if r["warnings"] else "") if x)
+            text = "; ".join(x for x in (r["tunnel_note"], ("warnings: " + r["warnings"]) if r["warnings"] else "",
+                                         r.get("statistics", "")) if x)
             out.append(f"- {LABEL[e]}, {s}, h = 1/{p}: {text}")
 
     if "stiffsoft" in engines:

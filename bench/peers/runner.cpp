@@ -79,6 +79,7 @@ RunResult run_engine(const std::string& name, const PeerScene& scene, double dur
   }
   r.accuracy = monitor.report();
   r.warnings = engine->warnings();
+  r.statistics = engine->statistics();
   r.load_after = load_average();
   return r;
 }

@@ -37,6 +37,7 @@ struct RunResult {
   double solve_ms = 0;        ///< stiffsoft: mean linear-solve time per step (ms)
   AccuracyReport accuracy;    ///< what the checks found
   std::string warnings;       ///< the engine's own warnings
+  std::string statistics;     ///< the engine's counters (MuJoCo's peak buffer use)
   std::string settings;       ///< the engine's settings line
   int threads = 1;            ///< threads the engine ran on
   double load_before = -1;    ///< 1-minute load average before the run

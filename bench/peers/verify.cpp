@@ -83,7 +83,9 @@ int verify_engines(const std::vector<std::string>& engines, const std::vector<st
         const PeerBody& body = scene.bodies[b];
         const Eigen::MatrixX3d ours = (body.x_bar * body.R0.transpose()).rowwise() + body.c0.transpose();
         const Eigen::MatrixX3d theirs = engine->collision_vertices(int(b));
-        const double d = theirs.rows() ? std::max(farthest_nearest(theirs, ours), farthest_nearest(ours, theirs)) : 1e9;
+        const double d = !theirs.rows()                  ? 1e9
+                         : engine->whole_surface(int(b)) ? std::max(farthest_nearest(theirs, ours), farthest_nearest(ours, theirs))
+                                                         : farthest_nearest(theirs, ours);
         if (d > worst) {
           worst = d;
           where = body.name;

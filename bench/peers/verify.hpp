@@ -3,7 +3,8 @@
 ///
 /// 1. Geometry: on each given scene, the engine's collision vertices (hull points, box corners,
 ///    mesh vertices, slice hulls), placed by its own poses at t = 0, coincide with stiffsoft's
-///    surface vertices of the same body, both ways (nearest-vertex distance < 1e-5 m).
+///    surface vertices of the same body, both ways (nearest-vertex distance < 1e-5 m; one way
+///    for MuJoCo's ground plane, whose rectangle is the ground's top face).
 /// 2. Free flight (a tumbling box and a torus under gravity, h = 1 ms, 0.3 s): centre of mass
 ///    within 1e-5 m of c₀ + v₀ t + g (t² + h t)/2, where semi-implicit and backward Euler both
 ///    put it (a pose that lags a step, a wrong velocity or frame misses by millimetres), and
