@@ -27,6 +27,8 @@
 #include "io/scene_builder.hpp"
 #include "io/scene_loader.hpp"
 
+#include "bench_statistics.hpp"
+
 using namespace stiffsoft;
 
 namespace {
@@ -35,11 +37,7 @@ double now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n == 0 ? 0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+using stiffsoft::bench::median;
 
 /// The densest system (most stored entries) a scene's Newton iterations produced in `steps` steps.
 LinearSystem densest_system(const std::filesystem::path& file, int steps, double dt) {

@@ -24,16 +24,13 @@
 #include "io/scene_builder.hpp"
 #include "io/scene_loader.hpp"
 
+#include "bench_statistics.hpp"
+
 using namespace stiffsoft;
 
 namespace {
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+using stiffsoft::bench::median;
 
 double mean(const std::vector<double>& v) {
   double s = 0;

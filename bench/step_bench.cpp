@@ -15,16 +15,13 @@
 #include "io/scene_builder.hpp"
 #include "io/scene_loader.hpp"
 
+#include "bench_statistics.hpp"
+
 using namespace stiffsoft;
 
 namespace {
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+using stiffsoft::bench::median;
 
 double mean(const std::vector<double>& v) {
   return v.empty() ? 0 : std::accumulate(v.begin(), v.end(), 0.0) / double(v.size());

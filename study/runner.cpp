@@ -1,5 +1,7 @@
 #include "study/runner.hpp"
 
+#include "coupling/linear_solver/petsc_arguments.hpp"
+
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -27,10 +29,7 @@ using Clock = std::chrono::steady_clock;
 std::vector<std::string> child_environment() {
   std::vector<std::string> env;
   for (char** e = environ; *e; ++e) {
-    const std::string v(*e);
-    if (v.rfind("OMPI_", 0) == 0 || v.rfind("PMIX_", 0) == 0 || v.rfind("PRTE_", 0) == 0 || v.rfind("OPAL_", 0) == 0)
-      continue;
-    env.push_back(v);
+    if (!is_mpi_launcher_variable(*e)) env.emplace_back(*e);
   }
   return env;
 }

@@ -1,5 +1,7 @@
 #include "coupling/linear_solver/petsc_arguments.hpp"
 
+#include <unistd.h>
+
 #include <array>
 #include <cstdlib>
 
@@ -67,6 +69,21 @@ SplitCommandLine split_petsc_arguments(int argc, const char* const* argv) {
       split.petsc.emplace_back(argv[++i]);
   }
   return split;
+}
+
+bool is_mpi_launcher_variable(std::string_view entry) {
+  for (const std::string_view prefix : {"OMPI_", "PMIX_", "OPAL_", "PRTE_", "ORTE_"})
+    if (starts_with(entry, prefix)) return true;
+  return false;
+}
+
+std::vector<std::string> mpi_launcher_variables() {
+  std::vector<std::string> names;
+  for (char** e = environ; *e; ++e) {
+    const std::string_view entry(*e);
+    if (is_mpi_launcher_variable(entry)) names.emplace_back(entry.substr(0, entry.find('=')));
+  }
+  return names;
 }
 
 }  // namespace stiffsoft

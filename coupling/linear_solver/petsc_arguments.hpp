@@ -29,4 +29,12 @@ bool is_petsc_option(std::string_view argument);
 /// the program's).
 SplitCommandLine split_petsc_arguments(int argc, const char* const* argv);
 
+/// True for an environment entry ("NAME=value" or "NAME") that an MPI launcher or an MPI
+/// singleton sets (OMPI_*, PMIX_*, OPAL_*, PRTE_*, ORTE_*). A child process started from a
+/// process that runs MPI (e.g. `mpirun`, or another `stiffsoft`) must not inherit them.
+bool is_mpi_launcher_variable(std::string_view entry);
+
+/// The names of this process's environment variables for which is_mpi_launcher_variable() holds.
+std::vector<std::string> mpi_launcher_variables();
+
 }  // namespace stiffsoft

@@ -4,9 +4,9 @@
 
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <nlohmann/json.hpp>
+
+#include "coupling/linear_solver/petsc_arguments.hpp"
 
 #include "io/frame_reader.hpp"
 #include "scene_helpers.hpp"
@@ -73,12 +73,7 @@ Eigen::MatrixXd last_frame(const fs::path& pvd) {
 /// started MPI here (as a singleton), a child `mpirun` must not inherit its environment.
 std::string without_mpi_environment() {
   std::string command = "env";
-  for (char** e = environ; *e; ++e) {
-    const std::string var(*e);
-    const std::string key = var.substr(0, var.find('='));
-    for (const char* prefix : {"OMPI_", "PMIX_", "OPAL_", "PRTE_", "ORTE_"})
-      if (key.rfind(prefix, 0) == 0) command += " -u " + key;
-  }
+  for (const std::string& name : mpi_launcher_variables()) command += " -u " + name;
   return command;
 }
 

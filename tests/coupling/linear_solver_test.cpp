@@ -588,12 +588,7 @@ TEST(PetscSolverMpi, TwoRanksAgreeWithTheSerialSolve) {
   std::filesystem::create_directories(dir);
   // The child must not inherit this process's MPI singleton environment (if it has one).
   std::string unset;
-  for (char** e = environ; *e; ++e) {
-    const std::string var(*e);
-    const std::string key = var.substr(0, var.find('='));
-    for (const char* prefix : {"OMPI_", "PMIX_", "OPAL_", "PRTE_", "ORTE_"})
-      if (key.rfind(prefix, 0) == 0) unset += " -u " + key;
-  }
+  for (const std::string& name : mpi_launcher_variables()) unset += " -u " + name;
   const std::string exe = std::filesystem::read_symlink("/proc/self/exe").string();
   const std::string log = (dir / "log.txt").string();
   const std::string command = "env" + unset + " STIFFSOFT_MPI_CHILD=" + shell_quote(dir.string()) +
