@@ -16,6 +16,10 @@ find_library(CHOLMOD_LIB cholmod REQUIRED)
 add_library(stiffsoft_cholmod INTERFACE)
 target_include_directories(stiffsoft_cholmod SYSTEM INTERFACE ${CHOLMOD_INCLUDE_DIR})
 target_link_libraries(stiffsoft_cholmod INTERFACE ${CHOLMOD_LIB})
+# CHOLMOD runs its supernodal loops on OpenMP (libgomp); the solver sets their threads
+# (cholmod_solver.cpp). Only the runtime is linked: no -fopenmp, so Eigen stays serial.
+find_package(OpenMP REQUIRED COMPONENTS CXX)
+target_link_libraries(stiffsoft_cholmod INTERFACE ${OpenMP_CXX_LIBRARIES})
 
 # gmsh 4.8 ships no CMake config.
 find_path(GMSH_INCLUDE_DIR gmsh.h REQUIRED)

@@ -14,19 +14,23 @@ StencilJacobian::StencilJacobian(const Model& model, const std::array<int, 4>& v
     if (s == slots) {
       block[s] = b;
       offset[s] = model.blocks[b].offset;
-      J[s] = SlotMatrix::Zero(12, model.blocks[b].size);
+      columns[s] = model.blocks[b].size;
+      J[s].setZero();
       ++slots;
     }
     if (node < 0)
       J[s].middleRows<3>(3 * i) = abd::jacobian(model.mesh.x_bar.row(v).transpose());
     else
-      J[s].middleRows<3>(3 * i) = Eigen::Matrix3d::Identity();
+      J[s].block<3, 3>(3 * i, 0) = Eigen::Matrix3d::Identity();
   }
 }
 
 void StencilJacobian::scatter_gradient(const Eigen::Matrix<double, 12, 1>& g_x,
                                        Eigen::VectorXd& g) const {
-  for (int s = 0; s < slots; ++s) g.segment(offset[s], J[s].cols()) += J[s].transpose() * g_x;
+  for (int s = 0; s < slots; ++s) {
+    const Eigen::Matrix<double, 12, 1> g_s = J[s].transpose() * g_x;
+    g.segment(offset[s], columns[s]) += g_s.head(columns[s]);
+  }
 }
 
 void StencilJacobian::scatter_hessian(const Eigen::Matrix<double, 12, 12>& H_x, BlockHessian& H) const {
@@ -34,9 +38,8 @@ void StencilJacobian::scatter_hessian(const Eigen::Matrix<double, 12, 12>& H_x, 
     const SlotMatrix HJ = H_x * J[s];
     for (int t = 0; t < slots; ++t) {
       if (block[t] > block[s]) continue;
-      const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 12, 12> Hts =
-          J[t].transpose() * HJ;
-      H.add(block[t], block[s], Hts);
+      const SlotMatrix Hts = J[t].transpose() * HJ;
+      H.add(block[t], block[s], Hts.topLeftCorner(columns[t], columns[s]));
     }
   }
 }

@@ -14,11 +14,13 @@ namespace stiffsoft {
 
 /// The linear map from the DOF blocks of a stencil's vertices to its packed vertex positions.
 struct StencilJacobian {
-  /// ∂x_stencil/∂q_s of one slot: 12 × (12 or 3).
-  using SlotMatrix = Eigen::Matrix<double, 12, Eigen::Dynamic, Eigen::ColMajor, 12, 12>;
+  /// ∂x_stencil/∂q_s of one slot: 12 × 12, of which the first `columns[s]` (12 or 3) are used
+  /// (fixed size, so the products below compile to unrolled kernels).
+  using SlotMatrix = Eigen::Matrix<double, 12, 12>;
   std::array<int, 4> block{-1, -1, -1, -1};  ///< DOF block of each slot
   std::array<int, 4> offset{-1, -1, -1, -1}; ///< first DOF of each slot in q
-  std::array<SlotMatrix, 4> J;               ///< ∂x_stencil/∂q_slot
+  std::array<SlotMatrix, 4> J;               ///< ∂x_stencil/∂q_slot, zero beyond its columns
+  std::array<int, 4> columns{0, 0, 0, 0};    ///< DOFs of each slot's block (12 affine, 3 soft node)
   int slots = 0;                             ///< number of slots with DOFs
 
   /// Builds the map for the given stencil vertices (−1 entries unused).

@@ -1,5 +1,7 @@
 #include "coupling/linear_solver/cholmod_solver.hpp"
 
+#include <omp.h>
+
 #include <Eigen/CholmodSupport>
 #include <chrono>
 #include <limits>
@@ -10,6 +12,35 @@ namespace {
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
+/// Debian's CHOLMOD is compiled with CHOLMOD_OMP_NUM_THREADS = 4: every supernode loop of the
+/// numeric factorisation asks OpenMP for 4 threads, whatever the machine and whatever the
+/// simulation's thread count. On small factors the team's start and barriers cost more than
+/// the arithmetic (measured: most of the solve time of the `light` pile on 2 cores), and on a
+/// machine with fewer cores the threads oversubscribe it. So factors below this many flops
+/// run on the calling thread (the parallel regions are made inactive), larger ones with
+/// OpenMP's dynamic adjustment (no more threads than idle cores).
+constexpr double kSerialFactorFlops = 5e7;
+
+/// Sets the OpenMP controls for one factorisation and restores them afterwards.
+class OpenMpScope {
+ public:
+  explicit OpenMpScope(double flops) : m_levels(omp_get_max_active_levels()), m_dynamic(omp_get_dynamic()) {
+    if (flops < kSerialFactorFlops)
+      omp_set_max_active_levels(0);
+    else
+      omp_set_dynamic(1);
+  }
+  ~OpenMpScope() {
+    omp_set_max_active_levels(m_levels);
+    omp_set_dynamic(m_dynamic);
+  }
+  OpenMpScope(const OpenMpScope&) = delete;
+  OpenMpScope& operator=(const OpenMpScope&) = delete;
+
+ private:
+  int m_levels, m_dynamic;
+};
+
 }  // namespace
 
 struct CholmodSolver::Impl {
@@ -35,7 +66,10 @@ double CholmodSolver::factor_nonzeros() const { return m_impl->nonzeros; }
 bool CholmodSolver::factorize(const Eigen::SparseMatrix<double>& upper) {
   const auto start = std::chrono::steady_clock::now();
   m_report = LinearSolveReport{};
-  m_impl->llt.factorize(upper);
+  {
+    const OpenMpScope threads(m_impl->flops);
+    m_impl->llt.factorize(upper);
+  }
   m_impl->factorized = m_impl->llt.info() == Eigen::Success;
   if (m_impl->factorized) {
     m_impl->upper = upper;

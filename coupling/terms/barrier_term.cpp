@@ -31,6 +31,10 @@ BarrierTerm::BarrierTerm(const Model& model, const BarrierSettings& settings, Ph
 void BarrierTerm::update(const Configuration& c) {
   double dummy = 0;
   ScopedTimer timer(m_times ? m_times->broad_phase : dummy);
+  if (m_swept && m_swept->covers(c.x)) {
+    m_constraints = build_constraints(m_model, c.x, m_swept->all(), m_settings.dhat);
+    return;
+  }
   const Candidates candidates = broad_phase(m_model, c.x, c.x, 0.5 * m_settings.dhat);
   m_constraints = build_constraints(m_model, c.x, candidates, m_settings.dhat);
 }
@@ -74,7 +78,9 @@ double BarrierTerm::max_step(const Configuration& c, const Eigen::VectorXd&, con
   double dummy = 0;
   ScopedTimer timer(m_times ? m_times->ccd : dummy);
   const Eigen::MatrixX3d x1 = c.x + dx;
-  const Candidates candidates = broad_phase(m_model, c.x, x1, 0.0);
+  // One broad phase for the CCD and every line-search trial of this direction (update()).
+  m_swept.emplace(m_model, c.x, x1, 0.5 * m_settings.dhat, 0.01 * m_settings.dhat);
+  const Candidates candidates = m_swept->for_ccd(m_model);
   const CollisionMesh& mesh = m_model.mesh;
   const auto row = [](const Eigen::MatrixX3d& m, int i) -> Eigen::Vector3d { return m.row(i).transpose(); };
   // Each chunk bounds its queries by the smallest time found so far (t_max = α), and the time

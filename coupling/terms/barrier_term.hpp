@@ -7,6 +7,7 @@
 
 #include "coupling/constraint_set.hpp"
 #include "coupling/phase_times.hpp"
+#include "coupling/swept_candidates.hpp"
 #include "coupling/terms/energy_term.hpp"
 
 namespace stiffsoft {
@@ -34,7 +35,8 @@ class BarrierTerm final : public EnergyTerm {
   void add_gradient(const Configuration& c, Eigen::VectorXd& g) const override;
   /// See EnergyTerm::add_hessian.
   void add_hessian(const Configuration& c, BlockHessian& H) const override;
-  /// Conservative CCD over the straight-line motion x → x + dx.
+  /// Conservative CCD over the straight-line motion x → x + dx; its broad phase (grown by
+  /// d̂/2) is kept for update() on the same segment.
   double max_step(const Configuration& c, const Eigen::VectorXd& dq, const Eigen::MatrixX3d& dx) const override;
   /// IPC's adaptive rule: double κ (up to κ_max) while the smallest distance keeps shrinking
   /// below 1e-9 × diagonal.
@@ -64,6 +66,8 @@ class BarrierTerm final : public EnergyTerm {
   double m_prev_min_distance = -1;
   bool m_balanced = false;
   std::vector<ContactConstraint> m_constraints;
+  /// Candidates of the last direction max_step bounded, reused by update() on that segment.
+  mutable std::optional<SweptCandidates> m_swept;
 };
 
 }  // namespace stiffsoft
