@@ -13,7 +13,7 @@
 namespace stiffsoft::peers {
 
 std::vector<std::string> available_engines() {
-  std::vector<std::string> names{"stiffsoft"};
+  std::vector<std::string> names{"stiffsoft", "stiffsoft-coarse"};
 #ifdef STIFFSOFT_WITH_BULLET
   names.push_back("bullet");
 #endif
@@ -24,7 +24,8 @@ std::vector<std::string> available_engines() {
 }
 
 std::unique_ptr<Engine> make_engine(const std::string& name, const PeerScene& scene, const EngineOptions& options) {
-  if (name == "stiffsoft") return std::make_unique<StiffsoftEngine>(scene);
+  if (name == "stiffsoft") return std::make_unique<StiffsoftEngine>(scene, scene.settings, name);
+  if (name == "stiffsoft-coarse") return std::make_unique<StiffsoftEngine>(scene, coarse_settings(scene), name);
 #ifdef STIFFSOFT_WITH_BULLET
   if (name == "bullet")
     return std::make_unique<BulletEngine>(scene, options.bullet_margin > 0 ? options.bullet_margin : 0.5 * scene.dhat);
@@ -41,7 +42,7 @@ std::unique_ptr<Engine> make_engine(const std::string& name, const PeerScene& sc
   }
 #endif
   (void)options;
-  throw std::invalid_argument("engine '" + name + "' is not available in this build (available: stiffsoft" +
+  throw std::invalid_argument("engine '" + name + "' is not available in this build (available: stiffsoft, stiffsoft-coarse" +
 #ifdef STIFFSOFT_WITH_BULLET
                               std::string(", bullet") +
 #endif

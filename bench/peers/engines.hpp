@@ -17,7 +17,8 @@ struct EngineOptions {
   int mujoco_njmax = 0;      ///< MuJoCo constraint rows; ≤ 0: 4 per contact (pyramidal cone, condim 3)
 };
 
-/// "stiffsoft" and the peers compiled in ("bullet", "mujoco").
+/// "stiffsoft" (the scene's settings), "stiffsoft-coarse" (coarse_settings: libuipc's friction
+/// smoothing and Newton tolerance) and the peers compiled in ("bullet", "mujoco").
 std::vector<std::string> available_engines();
 
 /// A fresh engine of that name on the scene at t = 0; throws std::invalid_argument for a name

@@ -18,8 +18,9 @@ import math
 import os
 import sys
 
-ENGINES = ["stiffsoft", "bullet", "mujoco"]
-LABEL = {"stiffsoft": "stiffsoft", "bullet": "Bullet", "mujoco": "MuJoCo"}
+ENGINES = ["stiffsoft", "stiffsoft-coarse", "bullet", "mujoco"]
+OURS = ["stiffsoft", "stiffsoft-coarse"]
+LABEL = {"stiffsoft": "stiffsoft", "stiffsoft-coarse": "stiffsoft coarse", "bullet": "Bullet", "mujoco": "MuJoCo"}
 SCENE_ORDER = ["light", "medium", "full", "house_of_cards", "wrecking_ball", "chain_net"]
 # Seed 001 ("Compare with Bullet"): ABD ms, Bullet ms, ABD Newton iterations, per pile and 1/h.
 SEED = {
@@ -66,7 +67,7 @@ def accuracy(row):
     checked, bad = int(row["frames_checked"]), int(row["frames_intersecting"])
     frames = f"{bad}/{checked} frames intersect"
     tunnel = "**tunnelled**" if row["tunnelled"] == "1" else "no tunnelling"
-    if row["engine"] == "stiffsoft":
+    if row["engine"] in OURS:
         d = num(row, "smallest_distance_m")
         distance = f"min. distance {mm(d)} mm" if not math.isnan(d) else "no contact"
         return f"{distance}; {frames}; {tunnel}"
@@ -86,11 +87,13 @@ def markdown(rows, comments):
     head = ["scene", "bodies", "h", "steps"]
     for e in engines:
         head.append(f"{LABEL[e]} ms/step")
-        if e == "stiffsoft":
+        if e in OURS:
             head.append("Newton it./step")
-    for e in engines:
-        if e != "stiffsoft" and "stiffsoft" in engines:
-            head.append(f"stiffsoft / {LABEL[e]}")
+    ours = [o for o in OURS if o in engines]
+    peers = [e for e in engines if e not in OURS]
+    for o in ours:
+        for e in peers:
+            head.append(f"{LABEL[o]} / {LABEL[e]}")
     out.append("| " + " | ".join(head) + " |")
     out.append("|" + "---|" * len(head))
     for scene, per_s in keys:
@@ -101,11 +104,11 @@ def markdown(rows, comments):
             r = rows.get((e, scene, per_s))
             ms[e] = num(r, "ms_median") if r else math.nan
             cells.append(fmt(ms[e]))
-            if e == "stiffsoft":
+            if e in OURS:
                 cells.append(fmt(num(r, "newton_mean")) if r else "–")
-        for e in engines:
-            if e != "stiffsoft" and "stiffsoft" in engines:
-                ratio = ms["stiffsoft"] / ms[e] if ms[e] > 0 else math.nan
+        for o in ours:
+            for e in peers:
+                ratio = ms[o] / ms[e] if ms[e] > 0 else math.nan
                 cells.append(fmt(ratio) + "×" if not math.isnan(ratio) else "–")
         out.append("| " + " | ".join(cells) + " |")
 
@@ -128,31 +131,38 @@ def markdown(rows, comments):
                                          r.get("statistics", "")) if x)
             out.append(f"- {LABEL[e]}, {s}, h = 1/{p}: {text}")
 
-    if "stiffsoft" in engines:
+    if ours:
         out += ["", "stiffsoft per phase (means per step, ms) and steps that hit Newton's iteration cap:", ""]
-        out.append("| scene | h | total ms (median) | Newton it. | broad phase | CCD | assembly | solve | unconverged |")
-        out.append("|---|---|---|---|---|---|---|---|---|")
+        out.append("| settings | scene | h | total ms (median) | Newton it. | broad phase | CCD | assembly | solve | unconverged |")
+        out.append("|---|---|---|---|---|---|---|---|---|---|")
         for scene, per_s in keys:
-            r = rows.get(("stiffsoft", scene, per_s))
+          for o in ours:
+            r = rows.get((o, scene, per_s))
             if r:
-                out.append("| " + " | ".join([scene, f"1/{per_s}", fmt(num(r, "ms_median")), fmt(num(r, "newton_mean"))] +
+                out.append("| " + " | ".join([LABEL[o], scene, f"1/{per_s}", fmt(num(r, "ms_median")), fmt(num(r, "newton_mean"))] +
                                              [fmt(num(r, k)) for k in ("broad_phase_ms", "ccd_ms", "assembly_ms", "solve_ms")] +
                                              [r["unconverged"]]) + " |")
 
     seed_rows = [(s, p) for (s, p) in keys if (s, p) in SEED]
-    if seed_rows and "stiffsoft" in engines and "bullet" in engines:
+    if seed_rows and ours and "bullet" in engines:
         out += ["", "Beside the seed's table (seed 001, its machine; ratios are each table's ABD or stiffsoft time "
                 "over its own Bullet time):", ""]
-        out.append("| pile | h | stiffsoft / Bullet here | seed ABD / Bullet | stiffsoft it. | seed ABD it. | "
-                   "Bullet ms here | seed Bullet ms |")
-        out.append("|---|---|---|---|---|---|---|---|")
+        out.append("| pile | h | " + " | ".join(f"{LABEL[o]} / Bullet here" for o in ours) +
+                   " | seed ABD / Bullet | " + " | ".join(f"{LABEL[o]} it." for o in ours) +
+                   " | seed ABD it. | Bullet ms here | seed Bullet ms |")
+        out.append("|" + "---|" * (6 + 2 * len(ours)))
         for s, p in seed_rows:
-            ours, bullet = rows.get(("stiffsoft", s, p)), rows.get(("bullet", s, p))
+            bullet = rows.get(("bullet", s, p))
             abd, seed_bullet, seed_it = SEED[(s, p)]
-            ratio = num(ours, "ms_median") / num(bullet, "ms_median") if ours and bullet else math.nan
-            out.append("| " + " | ".join([s, f"1/{p}", fmt(ratio) + "×", fmt(abd / seed_bullet) + "×",
-                                          fmt(num(ours, "newton_mean")) if ours else "–", fmt(seed_it),
-                                          fmt(num(bullet, "ms_median")) if bullet else "–", fmt(seed_bullet)]) + " |")
+            ratios, its = [], []
+            for o in ours:
+                r = rows.get((o, s, p))
+                ratio = num(r, "ms_median") / num(bullet, "ms_median") if r and bullet else math.nan
+                ratios.append(fmt(ratio) + "×" if not math.isnan(ratio) else "–")
+                its.append(fmt(num(r, "newton_mean")) if r else "–")
+            out.append("| " + " | ".join([s, f"1/{p}"] + ratios + [fmt(abd / seed_bullet) + "×"] + its +
+                                         [fmt(seed_it), fmt(num(bullet, "ms_median")) if bullet else "–",
+                                          fmt(seed_bullet)]) + " |")
 
     settings = {}
     for (e, s, p), r in rows.items():
@@ -174,7 +184,7 @@ def plot(rows, path, per_s=240):
               f"no plot written to {path}", file=sys.stderr)
         return False
     fig, ax = plt.subplots(figsize=(7, 4.5))
-    markers = {"stiffsoft": "o", "bullet": "s", "mujoco": "^"}
+    markers = {"stiffsoft": "o", "stiffsoft-coarse": "D", "bullet": "s", "mujoco": "^"}
     for e in ENGINES:
         points = sorted((int(r["bodies"]), num(r, "ms_median"), r["scene"]) for (en, s, p), r in rows.items()
                         if en == e and p == per_s)

@@ -31,7 +31,7 @@ RunResult run_engine(const std::string& name, const PeerScene& scene, double dur
   r.dt = scene.dt;
   r.steps = std::max(1, int(std::lround(duration / scene.dt)));
   r.duration = r.steps * scene.dt;
-  r.threads = name == "stiffsoft" ? options.threads : 1;
+  r.threads = name.rfind("stiffsoft", 0) == 0 ? options.threads : 1;
   r.load_before = load_average();
 
   std::unique_ptr<Engine> engine = make_engine(name, scene, options.engines);

@@ -1,12 +1,22 @@
 #include "peers/stiffsoft_engine.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "libabd/affine_body.hpp"
 
 namespace stiffsoft::peers {
 
-StiffsoftEngine::StiffsoftEngine(const PeerScene& scene) : m_simulation(scene.model, scene.settings) {}
+SimulationSettings coarse_settings(const PeerScene& scene) {
+  SimulationSettings s = scene.settings;
+  const double L = scene.model.bounding_box_diagonal();
+  s.eps_v = std::max(s.eps_v, 1e-2 * L);
+  s.tolerance = std::max(s.tolerance, 5e-2 * L);
+  return s;
+}
+
+StiffsoftEngine::StiffsoftEngine(const PeerScene& scene, const SimulationSettings& settings, std::string name)
+    : m_simulation(scene.model, settings), m_name(std::move(name)) {}
 
 std::string StiffsoftEngine::settings() const {
   const SimulationSettings& s = m_simulation.settings();
