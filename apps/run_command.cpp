@@ -13,6 +13,7 @@
 #include "io/atomic_file.hpp"
 #include "io/body_state_writer.hpp"
 #include "io/frame_writer.hpp"
+#include "io/joint_frame_writer.hpp"
 #include "io/scene_builder.hpp"
 #include "io/scene_loader.hpp"
 #include "io/stats_writer.hpp"
@@ -40,6 +41,19 @@ void add_joint_rows(StatsWriter& out, const Simulation& sim, int step) {
     out.add_row({double(step), sim.time(), double(j), x[j].x(), x[j].y(), x[j].z(), force.x(), force.y(), force.z(),
                  force.norm()});
   }
+}
+
+/// The joints of the current state, for the joints' .vtp frames.
+std::vector<JointFrameEntry> joint_frame(const Simulation& sim) {
+  const std::vector<Eigen::Vector3d> x_a = sim.joint_positions(), x_b = sim.joint_positions_b();
+  const std::vector<Eigen::Vector3d>& f = sim.joint_forces();
+  const std::vector<double> gaps = sim.joint_gaps();
+  std::vector<JointFrameEntry> out;
+  for (std::size_t j = 0; j < x_a.size(); ++j) {
+    const JointModel& joint = sim.model().joints[j];
+    out.push_back({joint.name, int(joint.kind), x_a[j], x_b[j], j < f.size() ? f[j] : Eigen::Vector3d::Zero(), gaps[j]});
+  }
+  return out;
 }
 
 std::vector<double> stats_row(const StepStats& s) {
@@ -134,6 +148,7 @@ int run_scene(const RunOptions& options) {
   std::optional<StatsWriter> stats;
   std::optional<BodyStateWriter> bodies;  // per-body state per step (studies)
   std::optional<StatsWriter> joints;      // per-frame joint positions and forces
+  std::optional<JointFrameWriter> joint_frames;  // the same as ParaView PolyData
   if (writes) {
     std::filesystem::create_directories(options.out);
     write_file_atomically(options.out / "scene.resolved.json",
@@ -141,11 +156,15 @@ int run_scene(const RunOptions& options) {
     frames.emplace(options.out, scene.name);
     stats.emplace(options.out / "stats.csv", kStatsColumns);
     bodies.emplace(options.out / "bodies.csv");
-    if (!scene.joints.empty()) joints.emplace(options.out / "joints.csv", kJointColumns);
+    if (!scene.joints.empty()) {
+      joints.emplace(options.out / "joints.csv", kJointColumns);
+      joint_frames.emplace(options.out, scene.name);
+    }
   }
   Simulation sim(std::move(model), settings);
   const Eigen::MatrixX3d x0 = sim.surface();
   if (writes) frames->write(0.0, frame_of(sim, x0));
+  if (joint_frames) joint_frames->write(0.0, joint_frame(sim));
   if (writes) bodies->add_state(0, sim);
 
   const double frame_dt = *scene.output.frame_dt;
@@ -171,6 +190,7 @@ int run_scene(const RunOptions& options) {
         if (joints) {
           add_joint_rows(*joints, sim, s.step);
           joints->flush();
+          joint_frames->write(sim.time(), joint_frame(sim));
         }
         if (bodies->size() < (std::size_t(8) << 20)) bodies->flush();  // large ones: at the end only
       }

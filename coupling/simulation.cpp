@@ -2,6 +2,7 @@
 
 #include <Eigen/QR>
 #include <chrono>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 
@@ -215,8 +216,10 @@ void Simulation::compute_joint_forces(const std::vector<EnergyTerm*>& terms, con
       if (m_constraints.row_is_point[i]) m_joint_forces[m_constraints.row_joint[i]] += mu.segment<3>(i) / beta_h2;
   }
   for (const auto& [p, v] : m_joints.potentials()) {
-    if (p.measure == JointMeasure::HingeAngle) continue;
-    const MeasureValue m = measure_derivatives(p.measure, v.gather(c.q));
+    if (measure_is_angle(p.measure)) continue;  // a torque, not reported
+    const Eigen::VectorXd y = v.gather(c.q);
+    if (p.inactive(measure(p.measure, y))) continue;
+    const MeasureValue m = measure_derivatives(p.measure, y);
     m_joint_forces[p.joint] -= p.first_derivative(m.s) * m.grad.head<3>();
   }
 }
@@ -225,6 +228,22 @@ std::vector<Eigen::Vector3d> Simulation::joint_positions() const {
   std::vector<Eigen::Vector3d> x;
   for (const JointModel& joint : m_model.joints) x.push_back(end_point(m_model, joint.a, joint.a.anchor).value(m_q));
   return x;
+}
+
+std::vector<Eigen::Vector3d> Simulation::joint_positions_b() const {
+  std::vector<Eigen::Vector3d> x;
+  for (const JointModel& joint : m_model.joints) x.push_back(end_point(m_model, joint.b, joint.b.anchor).value(m_q));
+  return x;
+}
+
+std::vector<double> Simulation::joint_gaps() const {
+  std::vector<double> gaps(m_model.joints.size(), std::numeric_limits<double>::quiet_NaN());
+  for (const auto& [p, v] : m_joints.potentials()) {
+    if (p.wrap != JointWrap::LowerBarrier && p.wrap != JointWrap::UpperBarrier) continue;
+    const double g = p.gap(measure(p.measure, v.gather(m_q)));
+    if (std::isnan(gaps[p.joint]) || g < gaps[p.joint]) gaps[p.joint] = g;
+  }
+  return gaps;
 }
 
 Eigen::MatrixX3d Simulation::contact_forces() const {

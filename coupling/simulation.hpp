@@ -103,6 +103,12 @@ class Simulation {
   const std::vector<Eigen::Vector3d>& joint_forces() const { return m_joint_forces; }
   /// World position of each joint's anchor on body a (m), indexed like Model::joints.
   std::vector<Eigen::Vector3d> joint_positions() const;
+  /// World position of each joint's point on body b (m): its anchor on body b, soft node or
+  /// world point (equal to joint_positions() for ball, cone-twist and hinge joints).
+  std::vector<Eigen::Vector3d> joint_positions_b() const;
+  /// Each joint's smallest gap to one of its limits now (rad or m, as the limit), NaN for a
+  /// joint without limits; indexed like Model::joints.
+  std::vector<double> joint_gaps() const;
 
  private:
   /// Newton's starting point: every dynamic body moved rigidly (p from q̃, A turned by

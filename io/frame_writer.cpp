@@ -259,12 +259,14 @@ int FrameWriter::frame_count() const { return static_cast<int>(frames_.size()); 
 
 std::filesystem::path FrameWriter::pvd_path() const { return out_dir_ / (scene_name_ + ".pvd"); }
 
-void FrameWriter::write_pvd() const {
-  write_file_atomically(pvd_path(), [&](std::ostream& out) {
+void FrameWriter::write_pvd() const { write_pvd_collection(pvd_path(), frames_); }
+
+void write_pvd_collection(const std::filesystem::path& pvd, const std::vector<std::pair<double, std::string>>& frames) {
+  write_file_atomically(pvd, [&](std::ostream& out) {
     out << "<?xml version=\"1.0\"?>\n"
            "<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
            "  <Collection>\n";
-    for (const auto& [time, file] : frames_) {
+    for (const auto& [time, file] : frames) {
       out << "    <DataSet timestep=\"" << format_double(time) << "\" part=\"0\" file=\""
           << xml_escape(file) << "\"/>\n";
     }

@@ -67,6 +67,11 @@ class FrameWriter {
   std::vector<std::pair<double, std::string>> frames_; ///< (time, .vtm path relative to OUT) per frame
 };
 
+/// Writes (atomically) a ParaView .pvd collection listing `frames` (time in s, file relative to
+/// the .pvd's folder), in order. Throws std::runtime_error naming the file on I/O failure.
+void write_pvd_collection(const std::filesystem::path& pvd,
+                          const std::vector<std::pair<double, std::string>>& frames);
+
 /// The file-name-safe form of a body name: letters, digits, '-', '_' and '.' are kept, every
 /// other byte becomes '_'; an empty name becomes "body". Used for `<index>_<name>.vtu`.
 std::string sanitize_file_name(const std::string& name);

@@ -116,13 +116,17 @@ struct JointDescription {
   std::string body_b = "world";                       ///< another body, or "world"
   Eigen::Vector3d anchor = Eigen::Vector3d::Zero();   ///< the joint point, on body a (m)
   std::optional<Eigen::Vector3d> anchor_b;            ///< distance kinds: the point on body b (m)
-  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();    ///< hinge and prismatic axis (need not be unit)
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();    ///< hinge, prismatic and cone-twist axis (need not be unit)
   double stiffness = 1e6;                             ///< penalty stiffness of distance and prismatic joints (N/m)
   std::optional<double> lower;                        ///< lower limit (rad for hinges, m otherwise); unset: none
   std::optional<double> upper;                        ///< upper limit (rad for hinges, m otherwise); unset: none
-  double limit_stiffness = 1.0;                       ///< limit barrier stiffness κ (J)
+  std::optional<double> swing;                        ///< cone-twist: largest bend (rad); unset: none
+  std::optional<double> twist_lower;                  ///< cone-twist: lowest twist (rad, < 0); unset: none
+  std::optional<double> twist_upper;                  ///< cone-twist: highest twist (rad, > 0); unset: none
+  std::optional<double> limit_stiffness;              ///< limit barrier stiffness κ (J); unset: automatic (scene_builder.hpp)
   double limit_activation = 0.05;                     ///< limit barrier activation gap ĝ (rad or m)
-  double damping = 0.0;                               ///< viscous damping of the free coordinate (N·m·s/rad or N·s/m)
+  double damping = 0.0;                               ///< viscous damping of the free coordinate (N·m·s/rad or N·s/m; ball, cone-twist: relative angular velocity)
+  std::optional<double> nodes_within;                 ///< ball joint to a soft body: pin every node within this distance of anchor (m); unset: the nearest node only
 };
 
 /// A whole scene, every default filled in.

@@ -197,6 +197,30 @@ JointEnd joint_end(const Model& model, int b, Eigen::Vector3d& point, const Eige
   return end;
 }
 
+/// The default limit stiffness κ of a joint whose body a has mass m, size ℓ (bounding-box
+/// diagonal) and initial speed v of its fastest point: m (|g| ℓ + ½ v²) (J), the energy scale
+/// of lifting it by its own size plus its kinetic energy; 1 J when that is 0.
+double automatic_limit_stiffness(double mass, double size, double speed, double gravity) {
+  const double energy = mass * (gravity * size + 0.5 * speed * speed);
+  return energy > 0 ? energy : 1.0;
+}
+
+/// The further nodes of soft body b within `radius` of `centre` (besides `primary`), each
+/// pinned to body a's material point at the node's initial position.
+std::vector<NodePin> node_pins(const Model& model, int a, int b, int primary, const Eigen::Vector3d& centre,
+                               double radius) {
+  const BodyModel& body_a = model.bodies[a];
+  const Eigen::Matrix3d A_inv = abd::affine_matrix(body_a.q0).inverse();
+  const Eigen::Vector3d p = abd::translation(body_a.q0);
+  std::vector<NodePin> pins;
+  for (int i = model.bodies[b].node_begin; i < model.bodies[b].node_end; ++i) {
+    const Eigen::Vector3d X = model.nodes.X.row(i).transpose();
+    if (i == primary || (X - centre).norm() > radius) continue;
+    pins.push_back({i, A_inv * (X - p)});
+  }
+  return pins;
+}
+
 /// The model's joints from the scene's, at the initial pose (so equalities hold there).
 void add_joints(Model& model, const SceneDescription& scene, const std::string& file) {
   const auto body_index = [&](const std::string& name) {
@@ -216,24 +240,46 @@ void add_joints(Model& model, const SceneDescription& scene, const std::string& 
       throw SceneError(file, at + ".body_a",
                        "body \"" + body_a.name + "\" is " + motion_name(body_a) +
                            "; body_a must be an affine body that moves (dynamic or kinematic)");
-    if (b >= 0 && model.bodies[b].representation == Representation::Soft && desc.kind != JointKind::Ball)
+    const bool soft_b = b >= 0 && model.bodies[b].representation == Representation::Soft;
+    if (soft_b && desc.kind != JointKind::Ball)
       throw SceneError(file, at + ".body_b",
                        "body \"" + desc.body_b + "\" is soft; soft bodies take ball joints only (kind is " +
                            joint_kind_name(desc.kind) + ")");
+    if (desc.nodes_within && !soft_b)
+      throw SceneError(file, at + ".nodes_within",
+                       "pins nodes of a soft body_b, but body_b \"" + desc.body_b + "\" is " +
+                           (b < 0 ? std::string("the world") : motion_name(model.bodies[b])));
+    if (soft_b && desc.damping > 0)
+      throw SceneError(file, at + ".damping",
+                       "a ball joint to soft body \"" + desc.body_b +
+                           "\" cannot be damped: a soft node has no rotation to damp relative to (use 0)");
     const Eigen::Vector3d axis = desc.axis.normalized();
     const Eigen::Vector3d reference = perpendicular(axis);
     Eigen::Vector3d point_b = desc.anchor_b.value_or(desc.anchor);
     joint.b = joint_end(model, b, point_b, axis, reference);
     Eigen::Vector3d point_a = joint.b.node >= 0 ? point_b : desc.anchor;
     joint.a = joint_end(model, a, point_a, axis, reference);
+    if (desc.nodes_within) {
+      const double nearest = (point_b - desc.anchor).norm();
+      if (nearest > *desc.nodes_within)
+        throw SceneError(file, at + ".nodes_within",
+                         "no node of body \"" + desc.body_b + "\" lies within " + std::to_string(*desc.nodes_within) +
+                             " m of anchor (the nearest is " + std::to_string(nearest) + " m away)");
+      joint.pins = node_pins(model, a, b, joint.b.node, desc.anchor, *desc.nodes_within);
+    }
     const int n = body_a.vertex_end - body_a.vertex_begin;
     const auto x_bar = model.mesh.x_bar.middleRows(body_a.vertex_begin, n);
-    joint.axis_length = std::max(1e-3, (x_bar.colwise().maxCoeff() - x_bar.colwise().minCoeff()).norm());
+    const double size = (x_bar.colwise().maxCoeff() - x_bar.colwise().minCoeff()).norm();
+    joint.axis_length = std::max(1e-3, size);
     joint.rest_length = (point_a - point_b).norm();
     joint.stiffness = desc.stiffness;
-    joint.lower = desc.lower;
-    joint.upper = desc.upper;
-    joint.limit_stiffness = desc.limit_stiffness;
+    joint.lower = desc.kind == JointKind::ConeTwist ? desc.twist_lower : desc.lower;
+    joint.upper = desc.kind == JointKind::ConeTwist ? desc.twist_upper : desc.upper;
+    joint.swing = desc.swing;
+    const BodyDescription& scene_a = scene.bodies[a];
+    const double speed = scene_a.velocity.norm() + scene_a.angular_velocity.norm() * size / 2;
+    joint.limit_stiffness =
+        desc.limit_stiffness.value_or(automatic_limit_stiffness(body_a.mass, size, speed, scene.gravity.norm()));
     joint.limit_activation = desc.limit_activation;
     joint.damping = desc.damping;
     if (desc.kind == JointKind::Distance && joint.rest_length <= 0)
@@ -316,6 +362,8 @@ void resolve_relative_defaults(SceneDescription& scene, const Model& model) {
   if (!scene.contact.eps_v) scene.contact.eps_v = 1e-3 * L;
   if (!scene.solver.tolerance) scene.solver.tolerance = 1e-2 * L;
   if (!scene.output.frame_dt) scene.output.frame_dt = std::max(scene.time.dt, 1.0 / 60.0);
+  for (std::size_t j = 0; j < scene.joints.size() && j < model.joints.size(); ++j)
+    if (!scene.joints[j].limit_stiffness) scene.joints[j].limit_stiffness = model.joints[j].limit_stiffness;
 }
 
 SimulationSettings simulation_settings(const SceneDescription& scene) {

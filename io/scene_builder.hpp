@@ -21,7 +21,8 @@ Model build_model(const SceneDescription& scene, const std::filesystem::path& fi
 
 /// Fills the scene's relative defaults (d̂, ε_v, Newton tolerance, frame interval) from the
 /// model's bounding-box diagonal L: d̂ = 1e-3 L, ε_v = 1e-3 L/s, ε_d = 1e-2 L/s,
-/// frame_dt = max(dt, 1/60 s).
+/// frame_dt = max(dt, 1/60 s); and each joint's unset limit_stiffness from the model's
+/// (automatic: m_a (|g| ℓ_a + ½ v_a²), docs/joints.md), so the resolved scene shows it.
 void resolve_relative_defaults(SceneDescription& scene, const Model& model);
 
 /// Simulation settings of a scene whose relative defaults are resolved.

@@ -116,10 +116,10 @@ MeshDescription mesh_from(const Json& mesh) {
   return out;
 }
 
-const char* const kJointKindNames[] = {"ball", "hinge", "prismatic", "distance", "bounded_distance"};
+const char* const kJointKindNames[] = {"ball", "hinge", "prismatic", "distance", "bounded_distance", "cone_twist"};
 
 JointKind joint_kind_from(const std::string& name) {
-  for (int k = 0; k < 5; ++k)
+  for (int k = 0; k < 6; ++k)
     if (name == kJointKindNames[k]) return JointKind(k);
   return JointKind::Ball;
 }
@@ -136,9 +136,13 @@ JointDescription joint_from(const Json& j) {
   if (j.contains("stiffness")) out.stiffness = j["stiffness"].get<double>();
   if (j.contains("lower")) out.lower = optional_number(j["lower"]);
   if (j.contains("upper")) out.upper = optional_number(j["upper"]);
-  if (j.contains("limit_stiffness")) out.limit_stiffness = j["limit_stiffness"].get<double>();
+  if (j.contains("swing")) out.swing = optional_number(j["swing"]);
+  if (j.contains("twist_lower")) out.twist_lower = optional_number(j["twist_lower"]);
+  if (j.contains("twist_upper")) out.twist_upper = optional_number(j["twist_upper"]);
+  if (j.contains("limit_stiffness")) out.limit_stiffness = optional_number(j["limit_stiffness"]);
   if (j.contains("limit_activation")) out.limit_activation = j["limit_activation"].get<double>();
   if (j.contains("damping")) out.damping = j["damping"].get<double>();
+  if (j.contains("nodes_within")) out.nodes_within = optional_number(j["nodes_within"]);
   return out;
 }
 
@@ -161,7 +165,8 @@ void check_joint_relations(const Json& scene, const std::string& file,
     if (j.body_b != "world" && !bodies.count(j.body_b))
       throw SceneError(file, at + ".body_b", "no body is named \"" + j.body_b + "\" (nor is it \"world\")");
     if (j.body_b == j.body_a) throw SceneError(file, at + ".body_b", "must differ from body_a (\"" + j.body_a + "\")");
-    if ((j.kind == JointKind::Hinge || j.kind == JointKind::Prismatic) && j.axis.norm() == 0)
+    if ((j.kind == JointKind::Hinge || j.kind == JointKind::Prismatic || j.kind == JointKind::ConeTwist) &&
+        j.axis.norm() == 0)
       throw SceneError(file, at + ".axis", "must not be zero");
     if ((j.kind == JointKind::Distance || j.kind == JointKind::BoundedDistance) && !j.anchor_b)
       throw SceneError(file, at + ".anchor_b", "required for kind \"" + std::string(kJointKindNames[int(j.kind)]) + "\"");
@@ -179,6 +184,21 @@ void check_joint_relations(const Json& scene, const std::string& file,
       if (j.upper && !(*j.upper > 0 && *j.upper < high))
         throw SceneError(file, at + ".upper", "must be > 0" + std::string(j.kind == JointKind::Hinge ? " and < π" : "") +
                                                   " (got " + std::to_string(*j.upper) + unit + ")");
+    }
+    if (j.kind == JointKind::ConeTwist) {
+      if (j.swing && !(*j.swing > 0 && *j.swing < M_PI))
+        throw SceneError(file, at + ".swing", "must be > 0 and < π (got " + std::to_string(*j.swing) +
+                                                  " rad; the initial pose is bend 0)");
+      if (j.twist_lower && !(*j.twist_lower < 0 && *j.twist_lower > -M_PI))
+        throw SceneError(file, at + ".twist_lower", "must be < 0 and > −π (got " + std::to_string(*j.twist_lower) +
+                                                        " rad; the initial pose is twist 0)");
+      if (j.twist_upper && !(*j.twist_upper > 0 && *j.twist_upper < M_PI))
+        throw SceneError(file, at + ".twist_upper", "must be > 0 and < π (got " + std::to_string(*j.twist_upper) +
+                                                        " rad; the initial pose is twist 0)");
+      if ((j.twist_lower || j.twist_upper) && !j.swing)
+        throw SceneError(file, at + ".swing",
+                         "required with twist_lower or twist_upper: the twist is undefined at bend π, which a swing "
+                         "limit (< π) keeps away");
     }
   }
 }
@@ -411,22 +431,30 @@ nlohmann::json resolved_scene_json(const SceneDescription& scene) {
   for (const JointDescription& joint : scene.joints) {
     const JointKind k = joint.kind;
     const bool distance = k == JointKind::Distance || k == JointKind::BoundedDistance;
-    const bool limited = k == JointKind::Hinge || k == JointKind::Prismatic || k == JointKind::BoundedDistance;
+    const bool limited = k == JointKind::Hinge || k == JointKind::Prismatic || k == JointKind::BoundedDistance ||
+                         k == JointKind::ConeTwist;
     Json j = {{"name", joint.name},
               {"kind", kJointKindNames[int(k)]},
               {"body_a", joint.body_a},
               {"body_b", joint.body_b},
               {"anchor", vector_json(joint.anchor)}};
     if (distance) j["anchor_b"] = joint.anchor_b ? vector_json(*joint.anchor_b) : Json(nullptr);
-    if (k == JointKind::Hinge || k == JointKind::Prismatic) j["axis"] = vector_json(joint.axis);
+    if (k == JointKind::Hinge || k == JointKind::Prismatic || k == JointKind::ConeTwist) j["axis"] = vector_json(joint.axis);
     if (k == JointKind::Prismatic || k == JointKind::Distance) j["stiffness"] = joint.stiffness;
-    if (limited) {
+    if (k == JointKind::ConeTwist) {
+      j["swing"] = optional_json(joint.swing);
+      j["twist_lower"] = optional_json(joint.twist_lower);
+      j["twist_upper"] = optional_json(joint.twist_upper);
+    } else if (limited) {
       j["lower"] = optional_json(joint.lower);
       j["upper"] = optional_json(joint.upper);
-      j["limit_stiffness"] = joint.limit_stiffness;
+    }
+    if (limited) {
+      j["limit_stiffness"] = optional_json(joint.limit_stiffness);
       j["limit_activation"] = joint.limit_activation;
     }
-    if (k != JointKind::Ball) j["damping"] = joint.damping;
+    j["damping"] = joint.damping;
+    if (k == JointKind::Ball) j["nodes_within"] = optional_json(joint.nodes_within);
     out["joints"].push_back(j);
   }
   return nlohmann::json(out);

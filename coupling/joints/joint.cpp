@@ -9,6 +9,7 @@ const char* joint_kind_name(JointKind kind) {
     case JointKind::Prismatic: return "prismatic";
     case JointKind::Distance: return "distance";
     case JointKind::BoundedDistance: return "bounded_distance";
+    case JointKind::ConeTwist: return "cone_twist";
   }
   return "ball";
 }

@@ -3,6 +3,8 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "coupling/joints/dual2.hpp"
+
 namespace stiffsoft {
 
 namespace {
@@ -27,9 +29,65 @@ void from_r_u(const Vector3d& g_r, const Vector3d& g_u, const Matrix3d& H_rr, co
       H_ru.transpose(), -H_ru.transpose(), H_uu;
 }
 
+/// The bend angle atan2(|e_a × e_b|, e_a·e_b) over Dual2 (y = [e_a; e_b]).
+Dual2<6> bend_dual(const Eigen::VectorXd& y) {
+  using V = Dual2Vector3<6>;
+  const V a = V::variables(0, y.segment<3>(0)), b = V::variables(1, y.segment<3>(3));
+  const V w = cross(a, b);
+  return atan2(sqrt(dot(w, w)), dot(a, b));
+}
+
+/// twist_angle() over Dual2 (y = [e_a; e_b; r_a; r_b]).
+Dual2<12> twist_dual(const Eigen::VectorXd& y) {
+  using D = Dual2<12>;
+  using V = Dual2Vector3<12>;
+  const V ea = normalized(V::variables(0, y.segment<3>(0))), eb = normalized(V::variables(1, y.segment<3>(3)));
+  const V ra = V::variables(2, y.segment<3>(6)), rb = V::variables(3, y.segment<3>(9));
+  const V w = cross(ea, eb);
+  const D c = dot(ea, eb);
+  const V v = c * ra + cross(w, ra) + (dot(w, ra) / (D::constant(1) + c)) * w;  // S r_a
+  return atan2(dot(eb, cross(rb, v)), dot(rb, v));
+}
+
+template <int N>
+void from_dual(const Dual2<N>& d, MeasureValue& out) {
+  out.s = d.v;
+  out.grad = d.g;
+  out.hess = d.H;
+}
+
 }  // namespace
 
-int measure_vectors(JointMeasure measure) { return measure == JointMeasure::Distance ? 2 : 3; }
+int measure_vectors(JointMeasure measure) {
+  switch (measure) {
+    case JointMeasure::Distance:
+    case JointMeasure::BendAngle: return 2;
+    case JointMeasure::TwistAngle: return 4;
+    default: return 3;
+  }
+}
+
+bool measure_is_angle(JointMeasure measure) {
+  return measure == JointMeasure::HingeAngle || measure == JointMeasure::BendAngle ||
+         measure == JointMeasure::TwistAngle;
+}
+
+double twist_angle(const Vector3d& e_a, const Vector3d& e_b, const Vector3d& r_a, const Vector3d& r_b) {
+  const Vector3d ea = e_a.normalized(), eb = e_b.normalized();
+  const Vector3d w = ea.cross(eb);
+  const double c = ea.dot(eb);
+  const Vector3d v = c * r_a + w.cross(r_a) + (w.dot(r_a) / (1 + c)) * w;
+  return std::atan2(eb.dot(r_b.cross(v)), r_b.dot(v));
+}
+
+Eigen::Matrix<double, 3, 18> relative_angular_velocity_jacobian(const Eigen::VectorXd& y) {
+  Eigen::Matrix<double, 3, 18> J;
+  for (int k = 0; k < 3; ++k) {
+    J.block<3, 3>(0, 3 * k) = 0.5 * cross_matrix(y.segment<3>(3 * k));
+    J.block<3, 3>(0, 9 + 3 * k) = -0.5 * cross_matrix(y.segment<3>(9 + 3 * k));
+  }
+  return J;
+}
 
 double measure(JointMeasure kind, const Eigen::VectorXd& y) {
   const Vector3d a = y.segment<3>(0), b = y.segment<3>(3);
@@ -48,6 +106,8 @@ double measure(JointMeasure kind, const Eigen::VectorXd& y) {
       const Vector3d n = y.segment<3>(6);
       return std::atan2(n.dot(b.cross(a)), a.dot(b));
     }
+    case JointMeasure::BendAngle: return std::atan2(a.cross(b).norm(), a.dot(b));
+    case JointMeasure::TwistAngle: return twist_angle(a, b, y.segment<3>(6), y.segment<3>(9));
   }
   return 0;
 }
@@ -115,6 +175,8 @@ MeasureValue measure_derivatives(JointMeasure kind, const Eigen::VectorXd& y) {
       out.hess = 0.5 * (H + H.transpose());
       break;
     }
+    case JointMeasure::BendAngle: from_dual(bend_dual(y), out); break;
+    case JointMeasure::TwistAngle: from_dual(twist_dual(y), out); break;
   }
   return out;
 }

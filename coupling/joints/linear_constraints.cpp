@@ -12,7 +12,13 @@ std::vector<std::pair<JointVector, JointVector>> linear_equalities(const Model& 
   };
   switch (joint.kind) {
     case JointKind::Ball:
+    case JointKind::ConeTwist:
       point_pair(0);
+      for (const NodePin& pin : joint.pins) {
+        JointEnd node;
+        node.node = pin.node;
+        pairs.emplace_back(end_point(model, joint.a, pin.anchor), end_point(model, node, Eigen::Vector3d::Zero()));
+      }
       break;
     case JointKind::Hinge:
       point_pair(-0.5 * joint.axis_length);

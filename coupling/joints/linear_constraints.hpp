@@ -1,7 +1,8 @@
 #pragma once
 /// @file The joints' linear equalities C q = d (m). For affine bodies x = A x̄ + p is linear
-/// in q, so a point connection p_a + A_a x̄_a = p_b + A_b x̄_b (or = a world point) is three
-/// linear rows; a hinge is two such points on its axis, and a locked relative orientation
+/// in q, so a point connection p_a + A_a x̄_a = p_b + A_b x̄_b (or = a world point, or a soft
+/// node's position) is three linear rows (ball and cone-twist joints, plus three per further
+/// pinned soft node); a hinge is two such points on its axis, and a locked relative orientation
 /// (prismatic joints) is A_a w̄_a,i = A_b w̄_b,i for the three world axes.
 
 #include <Eigen/Core>

@@ -29,6 +29,17 @@ void DampingTerm::lag_contact(const Configuration& c_n, const BarrierTerm& barri
 void DampingTerm::lag_joints() {
   for (const JointModel& joint : m_model.joints) {
     if (joint.damping <= 0) continue;
+    const double root = std::sqrt(m_beta_h * joint.damping);
+    if (joint.kind == JointKind::Ball || joint.kind == JointKind::ConeTwist) {
+      // The relative angular velocity ω_a − ω_b from the rates of both frames' columns.
+      std::vector<JointVector> columns;
+      for (const JointEnd* end : {&joint.a, &joint.b})
+        for (int k = 0; k < 3; ++k) columns.push_back(end_direction(m_model, *end, Eigen::Vector3d::Unit(k)));
+      JointVectors stack(std::move(columns));
+      const Eigen::VectorXd y_n = stack.gather(m_q_n);
+      m_joints.push_back({std::move(stack), root * relative_angular_velocity_jacobian(y_n), y_n});
+      continue;
+    }
     JointMeasure measure = JointMeasure::Distance;
     std::vector<JointVector> vectors;
     const JointVector xa = end_point(m_model, joint.a, joint.a.anchor), xb = end_point(m_model, joint.b, joint.b.anchor);
@@ -44,12 +55,13 @@ void DampingTerm::lag_joints() {
         break;
       case JointKind::Distance:
       case JointKind::BoundedDistance: vectors = {xa, xb}; break;
-      case JointKind::Ball: continue;  // rejected by the scene builder
+      case JointKind::Ball:
+      case JointKind::ConeTwist: break;  // above
     }
     JointVectors stack(std::move(vectors));
     const Eigen::VectorXd y_n = stack.gather(m_q_n);
     const MeasureValue m = measure_derivatives(measure, y_n);
-    m_joints.push_back({std::move(stack), std::sqrt(m_beta_h * joint.damping) * m.grad, y_n});
+    m_joints.push_back({std::move(stack), root * m.grad.transpose(), y_n});
   }
 }
 
@@ -59,10 +71,7 @@ double DampingTerm::value(const Configuration& c) const {
     const contact::Vector12d dx = gather(c.x, k.vertices) - k.x_n;
     e += 0.5 * dx.dot(k.K * dx);
   }
-  for (const JointElement& j : m_joints) {
-    const double r = j.w.dot(j.vectors.gather(c.q) - j.y_n);
-    e += 0.5 * r * r;
-  }
+  for (const JointElement& j : m_joints) e += 0.5 * (j.W * (j.vectors.gather(c.q) - j.y_n)).squaredNorm();
   return e;
 }
 
@@ -71,15 +80,13 @@ void DampingTerm::add_gradient(const Configuration& c, Eigen::VectorXd& g) const
     const contact::Vector12d dx = gather(c.x, k.vertices) - k.x_n;
     k.J.scatter_gradient(k.K * dx, g);
   }
-  for (const JointElement& j : m_joints) {
-    const double r = j.w.dot(j.vectors.gather(c.q) - j.y_n);
-    j.vectors.scatter_gradient(r * j.w, g);
-  }
+  for (const JointElement& j : m_joints)
+    j.vectors.scatter_gradient(j.W.transpose() * (j.W * (j.vectors.gather(c.q) - j.y_n)), g);
 }
 
 void DampingTerm::add_hessian(const Configuration&, BlockHessian& H) const {
   for (const ContactElement& k : m_contacts) k.J.scatter_hessian(k.K, H);
-  for (const JointElement& j : m_joints) j.vectors.scatter_hessian(j.w * j.w.transpose(), H);
+  for (const JointElement& j : m_joints) j.vectors.scatter_hessian(j.W.transpose() * j.W, H);
 }
 
 }  // namespace stiffsoft

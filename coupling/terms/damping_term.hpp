@@ -4,7 +4,9 @@
 ///  - contact: K = k_d ∇²B(xⁿ), B the contact barrier energy (J), k_d (s) per scene;
 ///  - joints: K = c ∇s(xⁿ) ∇s(xⁿ)ᵀ, s the joint's free coordinate (hinge angle, prismatic slide,
 ///    distance), c per joint (N·m·s/rad or N·s/m): a viscous damper on that coordinate, i.e.
-///    Rayleigh damping of the potential ½ s² with k_d = c.
+///    Rayleigh damping of the potential ½ s² with k_d = c; ball and cone-twist joints:
+///    K = c Jᵀ J with J = ∂ω/∂q̇ at xⁿ, ω the relative angular velocity of the two bodies
+///    (joint_measures.hpp, relative_angular_velocity_jacobian): a torque −c ω on body a.
 /// With ν = (q − qⁿ)/h the damping force is −K ν, which enters the incremental potential as
 /// ½ β h (q − qⁿ)ᵀ K (q − qⁿ) (gradient β h² K ν).
 
@@ -51,7 +53,7 @@ class DampingTerm final : public EnergyTerm {
   };
   struct JointElement {
     JointVectors vectors;
-    Eigen::VectorXd w;  // √(β h c) ∇s at qⁿ: the element is ½ (w·Δy)²
+    Eigen::MatrixXd W;  // √(β h c) ∂s/∂y at qⁿ, one row per damped coordinate: the element is ½ |W Δy|²
     Eigen::VectorXd y_n;
   };
   const Model& m_model;

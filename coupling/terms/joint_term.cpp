@@ -96,6 +96,17 @@ std::vector<std::pair<JointPotential, JointVectors>> joint_potentials(const Mode
                          JointVectors({xa, xb}));
         break;
       case JointKind::BoundedDistance: add_limits(JointMeasure::Distance, JointVectors({xa, xb})); break;
+      case JointKind::ConeTwist: {
+        const JointVector ea = end_direction(model, joint.a, joint.a.axis), eb = end_direction(model, joint.b, joint.b.axis);
+        if (joint.swing)
+          out.emplace_back(JointPotential{j, JointMeasure::BendAngle, JointWrap::UpperBarrier, joint.limit_stiffness,
+                                          *joint.swing, joint.limit_activation},
+                           JointVectors({ea, eb}));
+        add_limits(JointMeasure::TwistAngle,
+                   JointVectors({ea, eb, end_direction(model, joint.a, joint.a.reference),
+                                 end_direction(model, joint.b, joint.b.reference)}));
+        break;
+      }
     }
   }
   return out;
@@ -109,16 +120,24 @@ double JointTerm::value(const Configuration& c) const {
   return m_scale * e;
 }
 
+bool JointPotential::inactive(double s) const {
+  return (wrap == JointWrap::LowerBarrier || wrap == JointWrap::UpperBarrier) && gap(s) >= activation;
+}
+
 void JointTerm::add_gradient(const Configuration& c, Eigen::VectorXd& g) const {
   for (const auto& [p, v] : m_potentials) {
-    const MeasureValue m = measure_derivatives(p.measure, v.gather(c.q));
+    const Eigen::VectorXd y = v.gather(c.q);
+    if (p.inactive(measure(p.measure, y))) continue;
+    const MeasureValue m = measure_derivatives(p.measure, y);
     v.scatter_gradient(m_scale * p.first_derivative(m.s) * m.grad, g);
   }
 }
 
 void JointTerm::add_hessian(const Configuration& c, BlockHessian& H) const {
   for (const auto& [p, v] : m_potentials) {
-    const MeasureValue m = measure_derivatives(p.measure, v.gather(c.q));
+    const Eigen::VectorXd y = v.gather(c.q);
+    if (p.inactive(measure(p.measure, y))) continue;
+    const MeasureValue m = measure_derivatives(p.measure, y);
     const Eigen::MatrixXd H_y =
         p.second_derivative(m.s) * m.grad * m.grad.transpose() + p.first_derivative(m.s) * m.hess;
     v.scatter_hessian(m_scale * project_psd(H_y), H);

@@ -38,9 +38,15 @@ struct JointPotential {
   double second_derivative(double s) const;
   /// The barrier's gap (s − s_min or s_max − s); +∞ for penalties.
   double gap(double s) const;
+  /// True for a barrier farther than its activation gap from its limit: φ, φ' and φ'' are 0
+  /// there, so its measure is not differentiated (the bend angle's derivatives are singular at
+  /// bend 0, where a swing limit is never active).
+  bool inactive(double s) const;
 };
 
 /// The potentials of every joint of a model (none for ball and hinge joints without limits).
+/// A cone-twist joint has an upper barrier on its bend angle (swing) and lower/upper barriers
+/// on its twist angle.
 std::vector<std::pair<JointPotential, JointVectors>> joint_potentials(const Model& model);
 
 /// The joints' penalties and limit barriers.

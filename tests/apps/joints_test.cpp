@@ -4,12 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <iomanip>
 #include <sstream>
 
 #include "libabd/affine_body.hpp"
 #include "libabd/orthogonality_potential.hpp"
 #include "coupling/joints/joint_measures.hpp"
+#include "io/joint_frame_reader.hpp"
 #include "scene_helpers.hpp"
 
 using namespace stiffsoft;
@@ -139,6 +141,38 @@ TEST(Pendulum, JointDampingDecaysAsAViscousDamper) {
   }
 }
 
+TEST(Pendulum, BallJointDampingDecaysAsAViscousDamper) {
+  // A ball-joint damper c damps the bob's angular velocity relative to the world: a torque
+  // −c ω, so the planar swing obeys the same I_pivot θ̈ = −m g L θ − c θ̇ as the hinge above, and
+  // its peaks (at t = kπ/ω_d for a release at rest) lie on exp(−c t / (2 I_pivot)). Errors:
+  // BDF-2's own decay ≈ 1e-4 at h = 1e-2, the peak's time known to a step, the affine body's
+  // slight non-rigidity in ω = ½ Σ f_k × ḟ_k: well inside 1 %.
+  const double L = 1.0, theta0 = 0.1, h = 0.01, I = 0.01 / 6 + L * L;
+  double previous_ratio = 2;
+  for (const double c : {0.0, 0.05, 0.2, 0.5}) {
+    Simulation sim = simulate(pendulum("ball", "bdf2", h, 4, L, theta0, R"(, "damping": )" + std::to_string(c)));
+    double peak = 0, t_peak = 0, a_prev2 = 0, a_prev = angle(sim);
+    while (sim.time() < 4 - 1e-9) {
+      const StepStats s = sim.step();
+      ASSERT_TRUE(s.newton.converged) << s.newton.failure;
+      ASSERT_LT(s.joint_error, 1e-9);
+      const double a = angle(sim);
+      if (a_prev > a && a_prev > a_prev2 && a_prev > 0) {
+        peak = a_prev;
+        t_peak = sim.time() - h;
+      }
+      a_prev2 = a_prev;
+      a_prev = a;
+    }
+    const double ratio = peak / theta0, predicted = std::exp(-c * t_peak / (2 * I));
+    std::printf("ball damping c = %.2f N·m·s/rad: amplitude at t = %.2f s is %.4f of θ₀, exp(−c t/2I) = %.4f\n", c,
+                t_peak, ratio, predicted);
+    EXPECT_NEAR(ratio / predicted, 1.0, 0.01);
+    EXPECT_LT(ratio, previous_ratio);
+    previous_ratio = ratio;
+  }
+}
+
 TEST(ContactDamping, BounceHeightDecreasesAsKdGrows) {
   // A cube dropped 0.2 m onto a fixed slab under BDF-2: the rebound apex falls as k_d grows
   // (measured: 0.159, 0.156, 0.134, 0.041, 0.0015 m).
@@ -171,8 +205,11 @@ TEST(JointLimits, HingeRotationRangeIsNeverCrossed) {
   // A pendulum released 60° from the vertical with a lower rotation limit of −0.5 rad: it hits
   // the limit barrier, and its angle stays above the limit at every step.
   const double theta0 = M_PI / 3, lower = -0.5;
+  // κ = 1 J as when this test was written: with the automatic κ (1.70 J here) one step (t =
+  // 0.71 s) stalls at 1.8e-8 m/s against this test's 1e-8 m/s tolerance (the PSD-projected
+  // angle Hessian converges linearly near round-off); 1.5, 2 and 3 J converge.
   Simulation sim = simulate(pendulum("hinge", "bdf2", 0.01, 2, 0.5, theta0,
-                                     R"(, "lower": -0.5, "upper": 0.3, "limit_activation": 0.05)"));
+                                     R"(, "lower": -0.5, "upper": 0.3, "limit_activation": 0.05, "limit_stiffness": 1)"));
   double smallest_gap = 1e9;
   for (int k = 0; k < 150; ++k) {
     const StepStats s = sim.step();
@@ -189,6 +226,39 @@ TEST(JointLimits, HingeRotationRangeIsNeverCrossed) {
   }
   std::printf("hinge limit: smallest gap to the lower limit %.3e rad\n", smallest_gap);
   EXPECT_LT(smallest_gap, 0.05);  // the barrier was active: the limit stopped the swing
+}
+
+TEST(JointLimits, ConeTwistSwingAndTwistAreNeverExceeded) {
+  // A bob hanging 0.5 m below a world cone-twist joint (axis along the rod), pushed at 1.72 m/s
+  // (free, it would swing to 0.8 rad) and spun at 2 rad/s about the rod: the swing limit
+  // (0.3 rad) and the twist range (±0.2 rad) stop it, and are never exceeded.
+  const double L = 0.5, v = 1.72, swing = 0.3, twist = 0.2;
+  Simulation sim = simulate(R"({"description": "cone", "time": {"dt": 0.01, "integrator": "bdf2"},
+    "solver": {"tolerance": 1e-6},
+    "bodies": [{"name": "bob", "mesh": {"primitive": "box", "size": [0.1, 0.1, 0.1]}, "position": [0, )" + num(-L) + R"(, 0],
+                "velocity": [)" + num(v) + R"(, 0, 0], "angular_velocity": [0, 2, )" + num(v / L) + R"(]}],
+    "joints": [{"name": "shoulder", "kind": "cone_twist", "body_a": "bob", "anchor": [0, 0, 0], "axis": [0, -1, 0],
+                "swing": )" + num(swing) + R"(, "twist_lower": )" + num(-twist) + R"(, "twist_upper": )" + num(twist) + R"(}]})");
+  const auto value_of = [&](JointMeasure kind) {
+    for (const auto& [p, vectors] : sim.joint_term().potentials())
+      if (p.measure == kind) return measure(kind, vectors.gather(sim.q()));
+    return std::nan("");
+  };
+  double largest_bend = 0, largest_twist = 0;
+  for (int k = 0; k < 150; ++k) {
+    const StepStats s = sim.step();
+    ASSERT_TRUE(s.newton.converged) << s.newton.failure;
+    ASSERT_LT(s.joint_error, 1e-9);
+    const double bend = value_of(JointMeasure::BendAngle), tw = value_of(JointMeasure::TwistAngle);
+    ASSERT_LT(bend, swing) << "step " << s.step;
+    ASSERT_LT(std::abs(tw), twist) << "step " << s.step;
+    largest_bend = std::max(largest_bend, bend);
+    largest_twist = std::max(largest_twist, std::abs(tw));
+  }
+  std::printf("cone-twist: largest bend %.4f rad (swing %.2f), largest |twist| %.4f rad (range ±%.2f)\n", largest_bend,
+              swing, largest_twist, twist);
+  EXPECT_GT(largest_bend, swing - 0.05);  // the barriers were active: the limits stopped it
+  EXPECT_GT(largest_twist, twist - 0.05);
 }
 
 TEST(JointLimits, PrismaticSlidesAlongItsAxisWithinItsRange) {
@@ -299,6 +369,41 @@ TEST(SoftPin, AffineBodyHangsFromASoftBodysNode) {
   EXPECT_GT(y0 - y, 1e-5);
 }
 
+TEST(SoftPin, BlockGluedToSeveralNodesHoldsEveryPinAndDropsRedundantRows) {
+  // An affine cube glued (nodes_within) under a soft block's top face, whose nodes are all
+  // fixed: every node within 0.15 m of the face's centre is pinned to the cube, 3 rows each.
+  // The fixed nodes are coplanar, so their rows fix only 9 of the cube's 12 DOFs and most of
+  // them are combinations of others: the elimination must drop them as redundant, and the
+  // cube, held by the fixed face, stays where it is while the pins hold at every step.
+  Simulation sim = simulate(R"({"description": "glue", "time": {"dt": 0.01, "integrator": "bdf2"},
+    "bodies": [{"name": "block", "model": "soft", "mesh": {"primitive": "box", "size": [0.2, 0.2, 0.2]},
+                "mesh_size": 0.1, "material": {"young": 1e5, "poisson": 0.3}, "position": [0, 0.3, 0],
+                "dirichlet": [{"select": "box", "min": [-1, 0.39, -1], "max": [1, 1, 1]}]},
+               {"name": "cube", "mesh": {"primitive": "box", "size": [0.1, 0.1, 0.1]}, "position": [0, 0.46, 0]}],
+    "joints": [{"name": "glue", "kind": "ball", "body_a": "cube", "body_b": "block", "anchor": [0, 0.4, 0],
+                "nodes_within": 0.15}]})");
+  const JointModel& glue = sim.model().joints.at(0);
+  int fixed = 0;
+  for (const NodePin& pin : glue.pins) fixed += sim.model().nodes.block[pin.node] < 0;
+  fixed += sim.model().nodes.block[glue.b.node] < 0;
+  const int rows = sim.joint_constraints().rows();
+  EXPECT_EQ(rows, 3 * (1 + int(glue.pins.size())));
+  ASSERT_NE(sim.reduced_basis(), nullptr);
+  const int redundant = int(sim.reduced_basis()->redundant_rows().size());
+  std::printf("glue: %zu nodes pinned (%d fixed), %d rows, %d redundant\n", glue.pins.size() + 1, fixed, rows, redundant);
+  EXPECT_GE(fixed, 4);
+  EXPECT_GE(redundant, 3 * fixed - 9);  // coplanar fixed points fix at most 9 affine DOFs
+  const Eigen::Vector3d p0 = sim.q().segment<3>(sim.model().bodies[1].dof);
+  for (int k = 0; k < 20; ++k) {
+    const StepStats s = sim.step();
+    ASSERT_TRUE(s.newton.converged) << s.newton.failure;
+    ASSERT_LT(s.joint_error, 1e-9) << "step " << s.step;
+  }
+  const Eigen::Vector3d p = sim.q().segment<3>(sim.model().bodies[1].dof);
+  std::printf("glue: cube moved %.3e m in 0.2 s\n", (p - p0).norm());
+  EXPECT_LT((p - p0).norm(), 1e-3);
+}
+
 TEST(JointForces, HangingPendulumCarriesItsWeight) {
   // At rest below its pivot, the bob's ball joint holds exactly its weight m g (upwards).
   Simulation sim = simulate(pendulum("ball", "backward_euler", 0.01, 1, 1.0, 0.0));
@@ -308,6 +413,59 @@ TEST(JointForces, HangingPendulumCarriesItsWeight) {
   std::printf("hanging pendulum: joint force (%.4f, %.4f, %.4f) N, weight %.4f N\n", f.x(), f.y(), f.z(), weight);
   EXPECT_NEAR(f.y(), weight, 1e-3 * weight);
   EXPECT_LT(std::hypot(f.x(), f.z()), 1e-3 * weight);
+}
+
+TEST(JointForces, HangingPendulumsParaViewFrameCarriesItsWeight) {
+  // `stiffsoft run` writes the joints as PolyData beside the bodies' frames: the pivot's two
+  // ends at the origin, its force on the bob m g upwards, no limit (gap NaN).
+  const std::filesystem::path out = stiffsoft::testing::fresh_folder("stiffsoft_joint_vtp");
+  {
+    std::ofstream scene(out / "hang.json");
+    scene << pendulum("ball", "backward_euler", 0.01, 1, 1.0, 0.0);
+  }
+  ASSERT_EQ(stiffsoft::testing::run_stiffsoft("run " + (out / "hang.json").string() + " -o " + (out / "o").string() +
+                                                  " --steps 5",
+                                              out / "run.log"),
+            0)
+      << stiffsoft::testing::read_text(out / "run.log");
+  const std::string pvd = stiffsoft::testing::read_text(out / "o" / "hang_joints.pvd");
+  std::size_t frames = 0;
+  for (std::size_t at = pvd.find("<DataSet"); at != std::string::npos; at = pvd.find("<DataSet", at + 1)) ++frames;
+  ASSERT_GE(frames, 2u) << pvd;
+  char name[64];
+  std::snprintf(name, sizeof(name), "hang_joints_%06zu.vtp", frames - 1);
+  const JointFrameRead frame = read_joint_frame(out / "o" / "frames" / name);
+  EXPECT_NEAR(frame.time, 0.05, 1e-12);
+  ASSERT_EQ(frame.joints.size(), 1u);
+  const JointFrameEntry& pivot = frame.joints[0];
+  EXPECT_EQ(pivot.name, "pivot");
+  EXPECT_EQ(pivot.kind, int(JointKind::Ball));
+  EXPECT_LT(pivot.x_a.norm(), 1e-9);
+  EXPECT_LT(pivot.x_b.norm(), 1e-9);
+  const double weight = 1000 * 1e-3 * kG;
+  std::printf("hanging pendulum (ParaView frame): force (%.4f, %.4f, %.4f) N, weight %.4f N\n", pivot.force.x(),
+              pivot.force.y(), pivot.force.z(), weight);
+  EXPECT_NEAR(pivot.force.y(), weight, 1e-3 * weight);
+  EXPECT_LT(std::hypot(pivot.force.x(), pivot.force.z()), 1e-3 * weight);
+  EXPECT_TRUE(std::isnan(pivot.gap));
+  std::filesystem::remove_all(out);
+}
+
+TEST(JointScene, LimitStiffnessDefaultsToBodyAsEnergyScale) {
+  // κ = m_a (|g| ℓ_a + ½ v_a²): a 1 kg cube of side 0.1 m (ℓ = 0.1 √3 m) at rest weighs in at
+  // m g ℓ = 1.699 J; pushed at 2 m/s it adds ½ m v² = 2 J; an explicit value wins.
+  const auto kappa = [](const std::string& extra_body, const std::string& extra_joint) {
+    Simulation sim = simulate(R"({"description": "kappa",
+      "bodies": [{"name": "bob", "mesh": {"primitive": "box", "size": [0.1, 0.1, 0.1]}, "position": [0, -1, 0])" +
+                              extra_body + R"(}],
+      "joints": [{"name": "pivot", "kind": "hinge", "body_a": "bob", "anchor": [0, 0, 0], "lower": -1, "upper": 1)" +
+                              extra_joint + "}]}");
+    return sim.model().joints.at(0).limit_stiffness;
+  };
+  const double m_g_l = 1.0 * kG * 0.1 * std::sqrt(3.0);
+  EXPECT_NEAR(kappa("", ""), m_g_l, 1e-9);
+  EXPECT_NEAR(kappa(R"(, "velocity": [2, 0, 0])", ""), m_g_l + 2.0, 1e-9);
+  EXPECT_EQ(kappa("", R"(, "limit_stiffness": 7.5)"), 7.5);
 }
 
 TEST(JointScene, ErrorsNameTheJointAndWhatWasExpected) {
@@ -334,7 +492,14 @@ TEST(JointScene, ErrorsNameTheJointAndWhatWasExpected) {
   expect(R"({"name": "j", "kind": "distance", "body_a": "a", "anchor": [0, 0, 0]})", {"joints[0].anchor_b", "required"});
   expect(R"({"name": "j", "kind": "bounded_distance", "body_a": "a", "anchor": [0, 0, 0], "anchor_b": [0, 1, 0], "upper": 0.5})",
          {"joints[0]", "initial distance"});
-  expect(R"({"name": "j", "kind": "ball", "body_a": "a", "anchor": [0, 0, 0], "damping": 1})", {"joints[0].damping", "only allowed"});
+  expect(R"({"name": "j", "kind": "ball", "body_a": "a", "anchor": [0, 0, 0], "swing": 1})", {"joints[0].swing", "only allowed"});
+  expect(R"({"name": "j", "kind": "cone_twist", "body_a": "a", "anchor": [0, 0, 0], "swing": 3.2})", {"joints[0].swing", "< π"});
+  expect(R"({"name": "j", "kind": "cone_twist", "body_a": "a", "anchor": [0, 0, 0], "twist_upper": 0.5})",
+         {"joints[0].swing", "required", "bend π"});
+  expect(R"({"name": "j", "kind": "cone_twist", "body_a": "a", "anchor": [0, 0, 0], "swing": 1, "twist_lower": 0.1})",
+         {"joints[0].twist_lower", "< 0"});
+  expect(R"({"name": "j", "kind": "ball", "body_a": "a", "body_b": "wall", "anchor": [0, 0, 0], "nodes_within": 0.1})",
+         {"joints[0].nodes_within", "soft"});
   expect(R"({"name": "j", "kind": "ball", "body_a": "a", "anchor": [0, 0, 0]}, {"name": "j", "kind": "ball", "body_a": "a", "anchor": [0, 0, 0]})",
          {"joints[1].name", "duplicate"});
 }

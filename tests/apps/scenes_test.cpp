@@ -51,7 +51,8 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene,
                                            SceneCase{"top_slow", 40}, SceneCase{"top_medium", 40}, SceneCase{"top_fast", 40},
                                            SceneCase{"door_and_ball", 40}, SceneCase{"hanging_bridge", 30},
                                            SceneCase{"umbrella", 40}, SceneCase{"ragdoll_steps", 30},
-                                           SceneCase{"slider_spring_rope", 60}),
+                                           SceneCase{"slider_spring_rope", 60}, SceneCase{"cone_twist_chain", 40},
+                                           SceneCase{"glued_block", 30}),
                          [](const auto& info) { return info.param.name; });
 
 namespace {

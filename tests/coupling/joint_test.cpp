@@ -83,11 +83,13 @@ Eigen::VectorXd perturbed(const Model& model, double size, unsigned seed) {
 TEST(JointMeasures, DerivativesMatchFiniteDifferences) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1, 1);
-  for (JointMeasure m : {JointMeasure::Distance, JointMeasure::Slide, JointMeasure::OffAxis, JointMeasure::HingeAngle}) {
+  for (JointMeasure m : {JointMeasure::Distance, JointMeasure::Slide, JointMeasure::OffAxis, JointMeasure::HingeAngle,
+                         JointMeasure::BendAngle, JointMeasure::TwistAngle}) {
     for (int trial = 0; trial < 5; ++trial) {
       Eigen::VectorXd y(3 * measure_vectors(m));
       for (Eigen::Index i = 0; i < y.size(); ++i) y[i] = u(rng);
       const MeasureValue v = measure_derivatives(m, y);
+      EXPECT_NEAR(v.s, measure(m, y), 1e-13) << "measure " << int(m);
       const Eigen::VectorXd g = fd_gradient([&](const Eigen::VectorXd& x) { return measure(m, x); }, y);
       const Eigen::MatrixXd H = fd_jacobian([&](const Eigen::VectorXd& x) { return measure_derivatives(m, x).grad; }, y);
       EXPECT_LT(relative_error(v.grad, g), 1e-6) << "measure " << int(m);
@@ -104,6 +106,43 @@ TEST(JointMeasures, HingeAngleIsTheRotationAboutTheAxis) {
     y << std::cos(theta), std::sin(theta), 0, e_b, n;
     EXPECT_NEAR(measure(JointMeasure::HingeAngle, y), theta, 1e-14);
   }
+}
+
+TEST(JointMeasures, BendAndTwistAreTheSwingAndTwistOfTheRelativeRotation) {
+  // Body b in any orientation Q; body a turned relative to it by a twist τ about the axis e
+  // followed by a swing β about an axis ⟂ e: bend = β, twist = τ, whatever Q and the swing's
+  // direction. At β → π the twist is undefined, so β stays below.
+  const Eigen::Vector3d e = Eigen::Vector3d(0.2, 1, -0.3).normalized();
+  const Eigen::Vector3d r = e.cross(Eigen::Vector3d::UnitX()).normalized();
+  for (const double beta : {0.0, 0.4, 1.3, 2.8})
+    for (const double tau : {-2.5, -0.6, 0.0, 0.3, 1.7})
+      for (const double phi : {0.0, 1.1, 4.0}) {  // direction of the swing axis about e
+        const Eigen::Matrix3d Q = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
+        const Eigen::Vector3d swing_axis = Eigen::AngleAxisd(phi, e) * r;
+        const Eigen::Matrix3d R = (Eigen::AngleAxisd(beta, swing_axis) * Eigen::AngleAxisd(tau, e)).toRotationMatrix();
+        Eigen::VectorXd y(12);
+        y << Q * R * e, Q * e, Q * R * r, Q * r;
+        EXPECT_NEAR(measure(JointMeasure::BendAngle, y.head<6>()), beta, 1e-12);
+        EXPECT_NEAR(measure(JointMeasure::TwistAngle, y), tau, 1e-12) << "β " << beta << " φ " << phi;
+        // Lengths of e_a, e_b (an affine body's slight stretch) do not matter.
+        y.head<3>() *= 1.01;
+        y.segment<3>(3) *= 0.98;
+        EXPECT_NEAR(measure(JointMeasure::TwistAngle, y), tau, 1e-12);
+      }
+}
+
+TEST(JointMeasures, RelativeAngularVelocityOfTwoRotatingFrames) {
+  const Eigen::Matrix3d Fa = Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d Fb = Eigen::AngleAxisd(-1.2, Eigen::Vector3d(0, 1, -1).normalized()).toRotationMatrix();
+  const Eigen::Vector3d wa(0.3, -1.2, 2.0), wb(-0.5, 0.1, 0.7);
+  Eigen::VectorXd y(18), ydot(18);
+  for (int k = 0; k < 3; ++k) {
+    y.segment<3>(3 * k) = Fa.col(k);
+    y.segment<3>(9 + 3 * k) = Fb.col(k);
+    ydot.segment<3>(3 * k) = wa.cross(Fa.col(k));
+    ydot.segment<3>(9 + 3 * k) = wb.cross(Fb.col(k));
+  }
+  EXPECT_LT((relative_angular_velocity_jacobian(y) * ydot - (wa - wb)).norm(), 1e-14);
 }
 
 TEST(JointTerm, GradientMatchesFiniteDifferencesAndHessianIsPsd) {
@@ -125,10 +164,20 @@ TEST(JointTerm, GradientMatchesFiniteDifferencesAndHessianIsPsd) {
   JointModel h = joint(model, JointKind::Hinge, 0, 2, Eigen::Vector3d(1.5, 0, 0), Eigen::Vector3d(0, 1, 0));
   h.lower = -0.04;
   h.upper = 0.1;
-  model.joints = {d, bd, p, h};
+  // A cone-twist between the two bodies with all three barriers active (bend and twist of the
+  // perturbation are a few 1e-3 rad, ĝ = 0.05 rad; checked below).
+  JointModel ct = joint(model, JointKind::ConeTwist, 1, 0, Eigen::Vector3d(0.5, 0.1, 0), Eigen::Vector3d(1, 0, 1).normalized());
+  ct.swing = 0.03;
+  ct.lower = -0.02;
+  ct.upper = 0.04;
+  model.joints = {d, bd, p, h, ct};
   JointTerm term(model, 0.3);
-  ASSERT_EQ(term.potentials().size(), 8u);  // 1 + 2 + (1 + 2) + 2
+  ASSERT_EQ(term.potentials().size(), 11u);  // 1 + 2 + (1 + 2) + 2 + 3
   const Eigen::VectorXd q = perturbed(model, 3e-3, 11);
+  for (std::size_t k = 8; k < 11; ++k) {
+    const auto& [pot, vectors] = term.potentials()[k];
+    EXPECT_FALSE(pot.inactive(measure(pot.measure, vectors.gather(q)))) << "cone-twist potential " << k;
+  }
   const auto value = [&](const Eigen::VectorXd& x) {
     const Eigen::MatrixX3d none;
     return term.value({x, none});
@@ -150,6 +199,7 @@ TEST(JointTerm, GradientMatchesFiniteDifferencesAndHessianIsPsd) {
       const MeasureValue m = measure_derivatives(pot.measure, x);
       return pot.first_derivative(m.s) * m.grad;
     };
+    if (pot.inactive(measure(pot.measure, y))) continue;  // 0 (and not differentiated)
     const MeasureValue m = measure_derivatives(pot.measure, y);
     const Eigen::MatrixXd H_y = pot.second_derivative(m.s) * m.grad * m.grad.transpose() + pot.first_derivative(m.s) * m.hess;
     EXPECT_LT(relative_error(H_y, fd_jacobian(phi_grad, y, 1e-7)), 1e-5) << "joint " << pot.joint << " wrap " << int(pot.wrap);
@@ -217,6 +267,31 @@ TEST(ReducedBasis, InconsistentJointsAreReportedByName) {
   }
 }
 
+TEST(JointTerm, ConeTwistSwingLimitBoundsTheStep) {
+  // Bending body 0 by 0.6 rad about x (⟂ the axis z) crosses a swing of 0.4 rad: the step
+  // stops short of it, and the energy is +∞ beyond.
+  Model model = bodies_model(1);
+  JointModel ct = joint(model, JointKind::ConeTwist, 0, -1, Eigen::Vector3d(0, 0, 0));
+  ct.swing = 0.4;
+  model.joints = {ct};
+  JointTerm term(model, 1.0);
+  ASSERT_EQ(term.potentials().size(), 1u);
+  const Eigen::VectorXd q = model.initial_q();
+  const Eigen::MatrixX3d none;
+  const abd::Vector12d bent = abd::rigid_motion(q.head<12>(), Eigen::Vector3d::Zero(), Eigen::Vector3d(0.6, 0, 0), 1);
+  const Eigen::VectorXd dq = Eigen::VectorXd(bent) - q;
+  const double alpha = term.max_step({q, none}, dq, none);
+  EXPECT_GT(alpha, 0.0);
+  EXPECT_LT(alpha, 0.4 / 0.6);
+  EXPECT_TRUE(std::isfinite(term.value({Eigen::VectorXd(q + alpha * dq), none})));
+  EXPECT_FALSE(std::isfinite(term.value({Eigen::VectorXd(q + dq), none})));
+  // At the initial pose (bend 0, where the bend's derivatives are singular) the inactive
+  // barrier adds nothing, and no NaN.
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(q.size());
+  term.add_gradient({q, none}, g);
+  EXPECT_EQ(g.norm(), 0.0);
+}
+
 TEST(DampingTerm, JointDampingIsTheLaggedQuadraticItClaims) {
   Model model = bodies_model(2);
   JointModel h = joint(model, JointKind::Hinge, 0, 1, Eigen::Vector3d(0.5, 0, 0));
@@ -224,7 +299,11 @@ TEST(DampingTerm, JointDampingIsTheLaggedQuadraticItClaims) {
   JointModel d = joint(model, JointKind::Distance, 0, 1, Eigen::Vector3d(0.2, 0, 0));
   d.b = end_at(model, 1, Eigen::Vector3d(1.0, 0.3, 0));
   d.damping = 0.5;
-  model.joints = {h, d};
+  JointModel ball = joint(model, JointKind::Ball, 1, -1, Eigen::Vector3d(1.2, 0, 0));
+  ball.damping = 0.3;
+  JointModel ct = joint(model, JointKind::ConeTwist, 0, 1, Eigen::Vector3d(0.4, 0.1, 0));
+  ct.damping = 0.8;
+  model.joints = {h, d, ball, ct};
   DampingTerm term(model);
   const Eigen::VectorXd q_n = perturbed(model, 1e-2, 5);
   term.start_step(q_n, 0.7);
@@ -248,11 +327,33 @@ TEST(DampingTerm, JointDampingIsTheLaggedQuadraticItClaims) {
   EXPECT_LT(relative_error(Hd, fd_jacobian(gradient, q)), 1e-6);
   // ½ β h c ṡ² h²: the hinge's share for a pure rotation of body 0 about the hinge axis.
   DampingTerm hinge_only(model);
-  model.joints[1].damping = 0;
+  for (int j = 1; j < 4; ++j) model.joints[j].damping = 0;
   hinge_only.start_step(model.initial_q(), 0.7);
   hinge_only.lag_joints();
   Eigen::VectorXd q1 = model.initial_q();
   const double dtheta = 1e-4;
   q1.head<12>() = abd::rigid_motion(q1.head<12>(), Eigen::Vector3d::Zero(), Eigen::Vector3d(0, 0, dtheta), 1);
   EXPECT_NEAR(hinge_only.value({q1, none}), 0.5 * 0.7 * 2.0 * dtheta * dtheta, 1e-3 * 0.5 * 0.7 * 2.0 * dtheta * dtheta);
+}
+
+TEST(DampingTerm, BallJointDampsTheRelativeAngularVelocity) {
+  // ½ β h c |Δφ|² for a rotation Δφ of body 0 relative to body 1 (any axis), none for a common
+  // rotation of both bodies (about the same point) or a translation.
+  Model model = bodies_model(2);
+  JointModel ball = joint(model, JointKind::Ball, 0, 1, Eigen::Vector3d(0.5, 0, 0));
+  ball.damping = 1.5;
+  model.joints = {ball};
+  DampingTerm term(model);
+  const Eigen::VectorXd q0 = model.initial_q();
+  term.start_step(q0, 0.7);
+  term.lag_joints();
+  const Eigen::MatrixX3d none;
+  const Eigen::Vector3d dphi(1e-4, -2e-4, 0.5e-4);
+  Eigen::VectorXd q = q0;
+  q.head<12>() = abd::rigid_motion(q0.head<12>(), Eigen::Vector3d(0.3, 0, 0), dphi, 1);
+  const double expected = 0.5 * 0.7 * 1.5 * dphi.squaredNorm();
+  EXPECT_NEAR(term.value({q, none}), expected, 1e-3 * expected);
+  q = q0;
+  for (int b = 0; b < 2; ++b) q.segment<12>(12 * b) = abd::rigid_motion(q0.segment<12>(12 * b), Eigen::Vector3d(0.1, 0.2, 0), dphi, 1);
+  EXPECT_LT(term.value({q, none}), 1e-6 * expected);
 }
