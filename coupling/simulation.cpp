@@ -116,7 +116,7 @@ StepStats Simulation::step() {
   if (!m_joints.empty()) terms.push_back(&m_joints);
   const double beta = integrator_beta(m_settings.integrator);
   m_damping.start_step(m_q, beta * h);
-  m_damping.lag_contact(c_n, m_barrier, m_settings.contact_damping, beta * h * h);
+  m_damping.lag_contact(c_n, m_barrier, m_settings.contact_damping, m_settings.contact_pair_damping, beta * h * h);
   m_damping.lag_joints();
   if (!m_damping.empty()) terms.push_back(&m_damping);
 

@@ -36,6 +36,7 @@ struct SimulationSettings {
   std::string linear_solver = "auto";             ///< linear solver backend (see make_linear_solver())
   double kinematic_weight = 1e4;                  ///< inertia weight pulling kinematic bodies onto their path
   double contact_damping = 0;                     ///< lagged Rayleigh damping k_d of contacts (s); 0: none
+  std::vector<ContactPairDamping> contact_pair_damping;  ///< k_d per body pair, replacing contact_damping there
 };
 
 /// What one step did (a row of stats.csv).

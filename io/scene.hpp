@@ -22,6 +22,13 @@ struct TimeDescription {
   Integrator integrator = Integrator::BackwardEuler;
 };
 
+/// `contact.pairs[]`: settings for the contacts between two named bodies.
+struct ContactPairDescription {
+  std::string body_a;  ///< name of a body
+  std::string body_b;  ///< name of a body (may equal body_a: a soft body's self-contact)
+  double damping = 0;  ///< lagged Rayleigh damping k_d of this pair's contacts (s), ≥ 0; replaces contact.damping
+};
+
 /// `contact`: the IPC barrier and friction. Lengths in metres, speeds in m/s; an unset value
 /// is relative to the scene's bounding-box diagonal (see docs/units.md).
 struct ContactDescription {
@@ -30,6 +37,7 @@ struct ContactDescription {
   std::optional<double> eps_v;  ///< static/kinetic smoothing speed ε_v (m/s); default 1e-3 × diagonal / s
   std::optional<double> kappa;  ///< barrier stiffness (Pa·m, fixed); default adaptive (IPC's rule)
   double damping = 0.0;         ///< lagged Rayleigh damping k_d of contacts (s), ≥ 0; 0: none
+  std::vector<ContactPairDescription> pairs;  ///< per body pair settings, overriding the above for that pair
 };
 
 /// `solver`: Newton's stopping rule and the linear solver.

@@ -376,6 +376,14 @@ SimulationSettings simulation_settings(const SceneDescription& scene) {
   s.eps_v = scene.contact.eps_v.value();
   s.kappa = scene.contact.kappa;
   s.contact_damping = scene.contact.damping;
+  for (const ContactPairDescription& pair : scene.contact.pairs) {
+    const auto index = [&](const std::string& name) {
+      for (std::size_t i = 0; i < scene.bodies.size(); ++i)
+        if (scene.bodies[i].name == name) return int(i);
+      throw std::invalid_argument("contact.pairs: no body is named \"" + name + "\"");
+    };
+    s.contact_pair_damping.push_back({index(pair.body_a), index(pair.body_b), pair.damping});
+  }
   s.tolerance = scene.solver.tolerance.value();
   s.max_iterations = scene.solver.max_iterations;
   s.linear_solver = scene.solver.linear;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <unordered_map>
 
@@ -147,6 +148,24 @@ JointDescription joint_from(const Json& j) {
 }
 
 // Joints: unique names, existing and distinct bodies, usable axes and limits.
+/// contact.pairs: both bodies exist, each pair at most once (in either order).
+void check_contact_pairs(const Json& scene, const std::string& file,
+                         const std::unordered_map<std::string, std::size_t>& bodies) {
+  std::map<std::pair<std::string, std::string>, std::size_t> seen;
+  const Json& pairs = scene.at("contact").at("pairs");
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const std::string at = "contact.pairs[" + std::to_string(i) + "]";
+    std::string a = pairs[i].at("body_a").get<std::string>(), b = pairs[i].at("body_b").get<std::string>();
+    if (!bodies.count(a)) throw SceneError(file, at + ".body_a", "no body is named \"" + a + "\"");
+    if (!bodies.count(b)) throw SceneError(file, at + ".body_b", "no body is named \"" + b + "\"");
+    if (b < a) std::swap(a, b);
+    const auto [it, inserted] = seen.emplace(std::make_pair(a, b), i);
+    if (!inserted)
+      throw SceneError(file, at, "the pair \"" + a + "\", \"" + b + "\" is already given by contact.pairs[" +
+                                     std::to_string(it->second) + "]; list each pair once");
+  }
+}
+
 void check_joint_relations(const Json& scene, const std::string& file,
                            const std::unordered_map<std::string, std::size_t>& bodies) {
   std::unordered_map<std::string, std::size_t> first_use;
@@ -229,6 +248,7 @@ void check_relations(const Json& scene, const std::string& file) {
                            ")");
   }
   check_joint_relations(scene, file, first_use);
+  check_contact_pairs(scene, file, first_use);
 }
 
 SceneDescription scene_from(const Json& scene, const std::string& name) {
@@ -249,6 +269,9 @@ SceneDescription scene_from(const Json& scene, const std::string& name) {
   out.contact.eps_v = optional_number(contact.at("eps_v"));
   out.contact.kappa = optional_number(contact.at("kappa"));
   out.contact.damping = contact.at("damping").get<double>();
+  for (const Json& pair : contact.at("pairs"))
+    out.contact.pairs.push_back({pair.at("body_a").get<std::string>(), pair.at("body_b").get<std::string>(),
+                                 pair.at("damping").get<double>()});
 
   const Json& solver = scene.at("solver");
   out.solver.tolerance = optional_number(solver.at("tolerance"));
@@ -363,7 +386,10 @@ nlohmann::json resolved_scene_json(const SceneDescription& scene) {
                     {"mu", scene.contact.mu},
                     {"eps_v", optional_json(scene.contact.eps_v)},
                     {"kappa", optional_json(scene.contact.kappa)},
-                    {"damping", scene.contact.damping}};
+                    {"damping", scene.contact.damping},
+                    {"pairs", Json::array()}};
+  for (const ContactPairDescription& pair : scene.contact.pairs)
+    out["contact"]["pairs"].push_back({{"body_a", pair.body_a}, {"body_b", pair.body_b}, {"damping", pair.damping}});
   out["solver"] = {{"tolerance", optional_json(scene.solver.tolerance)},
                    {"max_iterations", scene.solver.max_iterations},
                    {"linear", scene.solver.linear}};

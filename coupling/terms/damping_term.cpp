@@ -1,5 +1,6 @@
 #include "coupling/terms/damping_term.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "coupling/contact/barrier_potential.hpp"
@@ -14,11 +15,30 @@ void DampingTerm::start_step(const Eigen::VectorXd& q_n, double beta_h) {
   m_joints.clear();
 }
 
-void DampingTerm::lag_contact(const Configuration& c_n, const BarrierTerm& barrier, double k_d, double beta_h2) {
-  if (k_d <= 0) return;
-  // K = k_d ∇²B with B = (barrier value)/(β h²); times β h for the incremental potential.
-  const double weight = m_beta_h * k_d / beta_h2;
+double contact_pair_damping(const std::array<int, 2>& bodies, double k_d, const std::vector<ContactPairDamping>& pairs) {
+  for (const ContactPairDamping& p : pairs)
+    if ((p.body_a == bodies[0] && p.body_b == bodies[1]) || (p.body_a == bodies[1] && p.body_b == bodies[0]))
+      return p.damping;
+  return k_d;
+}
+
+void DampingTerm::lag_contact(const Configuration& c_n, const BarrierTerm& barrier, double k_d,
+                              const std::vector<ContactPairDamping>& pairs, double beta_h2) {
+  const bool any = k_d > 0 || std::any_of(pairs.begin(), pairs.end(), [](const ContactPairDamping& p) { return p.damping > 0; });
+  if (!any) return;
   for (const ContactConstraint& k : barrier.constraints()) {
+    // The stencil's bodies: its first vertex's and any other (one body for self-contact).
+    std::array<int, 2> bodies{-1, -1};
+    for (const int v : k.vertices) {
+      if (v < 0) continue;
+      const int b = m_model.mesh.vertex_body[v];
+      if (bodies[0] < 0) bodies = {b, b};
+      else if (b != bodies[0]) bodies[1] = b;
+    }
+    const double k_pair = pairs.empty() ? k_d : contact_pair_damping(bodies, k_d, pairs);
+    if (k_pair <= 0) continue;
+    // K = k_d ∇²B with B = (barrier value)/(β h²); times β h for the incremental potential.
+    const double weight = m_beta_h * k_pair / beta_h2;
     const contact::Vector12d x_n = gather(c_n.x, k.vertices);
     const contact::Matrix12d H =
         barrier.kappa() * k.weight * contact::barrier_potential_hessian(k.stencil, x_n, barrier.dhat(), true);

@@ -1,7 +1,8 @@
 #pragma once
 /// @file Lagged Rayleigh damping (Chen, Li et al. 2022): a dissipation ½ νᵀ K ν with ν the
 /// velocity and K a PSD matrix frozen at the step's start xⁿ,
-///  - contact: K = k_d ∇²B(xⁿ), B the contact barrier energy (J), k_d (s) per scene;
+///  - contact: K = k_d ∇²B(xⁿ), B the contact barrier energy (J), k_d (s) per scene or per
+///    body pair;
 ///  - joints: K = c ∇s(xⁿ) ∇s(xⁿ)ᵀ, s the joint's free coordinate (hinge angle, prismatic slide,
 ///    distance), c per joint (N·m·s/rad or N·s/m): a viscous damper on that coordinate, i.e.
 ///    Rayleigh damping of the potential ½ s² with k_d = c; ball and cone-twist joints:
@@ -10,6 +11,7 @@
 /// With ν = (q − qⁿ)/h the damping force is −K ν, which enters the incremental potential as
 /// ½ β h (q − qⁿ)ᵀ K (q − qⁿ) (gradient β h² K ν).
 
+#include <array>
 #include <vector>
 
 #include "coupling/joints/joint_vectors.hpp"
@@ -19,6 +21,17 @@
 #include "coupling/terms/energy_term.hpp"
 
 namespace stiffsoft {
+
+/// k_d of the contacts between two bodies, replacing the scene-wide value for that pair.
+struct ContactPairDamping {
+  int body_a = -1;     ///< body index in Model::bodies
+  int body_b = -1;     ///< body index in Model::bodies (body_a for a soft body's self-contact)
+  double damping = 0;  ///< k_d (s), ≥ 0
+};
+
+/// The k_d (s) of a contact whose stencil touches `bodies` (one or two distinct bodies): the
+/// pair's value when `pairs` lists that pair (in either order), else `k_d`.
+double contact_pair_damping(const std::array<int, 2>& bodies, double k_d, const std::vector<ContactPairDamping>& pairs);
 
 /// The lagged damping of one step, contact and joints together.
 class DampingTerm final : public EnergyTerm {
@@ -31,8 +44,10 @@ class DampingTerm final : public EnergyTerm {
   /// weight β h (s) of the step to come.
   void start_step(const Eigen::VectorXd& q_n, double beta_h);
   /// Adds contact damping k_d ∇²B(xⁿ) over the barrier's active contacts at c_n. `barrier`
-  /// is the barrier term (value in units of β h² × energy); k_d in s.
-  void lag_contact(const Configuration& c_n, const BarrierTerm& barrier, double k_d, double beta_h2);
+  /// is the barrier term (value in units of β h² × energy); k_d in s, replaced by the pair's
+  /// value for contacts between the bodies of an entry of `pairs`.
+  void lag_contact(const Configuration& c_n, const BarrierTerm& barrier, double k_d,
+                   const std::vector<ContactPairDamping>& pairs, double beta_h2);
   /// Adds the damping of every joint with damping c > 0, at q_n.
   void lag_joints();
   /// True when nothing is damped this step.

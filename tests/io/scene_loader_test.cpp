@@ -51,6 +51,8 @@ const BrokenCase kBroken[] = {
     {"empty_body_name.json", "bodies[0].name: must not be empty"},
     {"unknown_linear_solver.json", "solver.linear: unknown linear solver 'magic' (available: cholmod, auto, petsc"},
     {"unknown_preconditioner.json", "solver.linear: PETSc backend: unknown preconditioner 'ilu' (available: none, jacobi"},
+    {"contact_pair_unknown_body.json", "contact.pairs[0].body_b: no body is named \"floor\""},
+    {"contact_pair_twice.json", "contact.pairs[1]: the pair \"a\", \"b\" is already given by contact.pairs[0]"},
 };
 
 TEST(SceneLoader, EveryBrokenSceneGivesASceneErrorNamingFileAndJsonPath) {
@@ -119,6 +121,11 @@ TEST(SceneLoader, AGoodSceneKeepsEveryValueItGives) {
   EXPECT_EQ(s.contact.mu, 0.4);
   EXPECT_EQ(s.contact.eps_v, 0.0005);
   EXPECT_EQ(s.contact.kappa, 1000.0);
+  EXPECT_EQ(s.contact.damping, 0.001);
+  ASSERT_EQ(s.contact.pairs.size(), 1u);
+  EXPECT_EQ(s.contact.pairs[0].body_a, "ball");
+  EXPECT_EQ(s.contact.pairs[0].body_b, "floor");
+  EXPECT_EQ(s.contact.pairs[0].damping, 0.002);
   EXPECT_EQ(s.solver.tolerance, 0.003);
   EXPECT_EQ(s.solver.max_iterations, 17);
   EXPECT_EQ(s.solver.linear, "cholmod");
