@@ -114,44 +114,15 @@ TEST(Pendulum, BackwardEulerDampsAsPredictedAndBdf2KeepsTheAmplitude) {
   }
 }
 
-TEST(Pendulum, JointDampingDecaysAsAViscousDamper) {
-  // A hinge damper c (N·m·s/rad) on I_pivot θ̈ = −m g L θ − c θ̇ decays the amplitude as
-  // exp(−c t / (2 I_pivot)); BDF-2 with h = 1e-2 adds ≈ 1e-4 of its own. More c, less amplitude.
-  const double L = 1.0, theta0 = 0.1, h = 0.01, I = 0.01 / 6 + L * L;
-  double previous_ratio = 2;
-  for (const double c : {0.0, 0.05, 0.2, 0.5}) {
-    Simulation sim = simulate(pendulum("hinge", "bdf2", h, 4, L, theta0, R"(, "damping": )" + std::to_string(c)));
-    double peak = 0, t_peak = 0, a_prev2 = 0, a_prev = angle(sim);
-    while (sim.time() < 4 - 1e-9) {
-      const StepStats s = sim.step();
-      ASSERT_TRUE(s.newton.converged) << s.newton.failure;
-      const double a = angle(sim);
-      if (a_prev > a && a_prev > a_prev2 && a_prev > 0) {
-        peak = a_prev;
-        t_peak = sim.time() - h;
-      }
-      a_prev2 = a_prev;
-      a_prev = a;
-    }
-    const double ratio = peak / theta0, predicted = std::exp(-c * t_peak / (2 * I));
-    std::printf("hinge damping c = %.2f N·m·s/rad: amplitude at t = %.2f s is %.4f of θ₀, exp(−c t/2I) = %.4f\n", c,
-                t_peak, ratio, predicted);
-    EXPECT_NEAR(ratio / predicted, 1.0, 0.01);
-    EXPECT_LT(ratio, previous_ratio);
-    previous_ratio = ratio;
-  }
-}
+namespace {
 
-TEST(Pendulum, BallJointDampingDecaysAsAViscousDamper) {
-  // A ball-joint damper c damps the bob's angular velocity relative to the world: a torque
-  // −c ω, so the planar swing obeys the same I_pivot θ̈ = −m g L θ − c θ̇ as the hinge above, and
-  // its peaks (at t = kπ/ω_d for a release at rest) lie on exp(−c t / (2 I_pivot)). Errors:
-  // BDF-2's own decay ≈ 1e-4 at h = 1e-2, the peak's time known to a step, the affine body's
-  // slight non-rigidity in ω = ½ Σ f_k × ḟ_k: well inside 1 %.
+/// A damped pendulum (joint kind `kind`, damping c on the joint) over 4 s: its amplitude ratio
+/// at the last swing peak must follow exp(−c t / (2 I_pivot)) within 1 % and fall as c grows.
+void expect_viscous_decay(const std::string& kind) {
   const double L = 1.0, theta0 = 0.1, h = 0.01, I = 0.01 / 6 + L * L;
   double previous_ratio = 2;
   for (const double c : {0.0, 0.05, 0.2, 0.5}) {
-    Simulation sim = simulate(pendulum("ball", "bdf2", h, 4, L, theta0, R"(, "damping": )" + std::to_string(c)));
+    Simulation sim = simulate(pendulum(kind, "bdf2", h, 4, L, theta0, R"(, "damping": )" + std::to_string(c)));
     double peak = 0, t_peak = 0, a_prev2 = 0, a_prev = angle(sim);
     while (sim.time() < 4 - 1e-9) {
       const StepStats s = sim.step();
@@ -166,12 +137,29 @@ TEST(Pendulum, BallJointDampingDecaysAsAViscousDamper) {
       a_prev = a;
     }
     const double ratio = peak / theta0, predicted = std::exp(-c * t_peak / (2 * I));
-    std::printf("ball damping c = %.2f N·m·s/rad: amplitude at t = %.2f s is %.4f of θ₀, exp(−c t/2I) = %.4f\n", c,
-                t_peak, ratio, predicted);
+    std::printf("%s damping c = %.2f N·m·s/rad: amplitude at t = %.2f s is %.4f of θ₀, exp(−c t/2I) = %.4f\n",
+                kind.c_str(), c, t_peak, ratio, predicted);
     EXPECT_NEAR(ratio / predicted, 1.0, 0.01);
     EXPECT_LT(ratio, previous_ratio);
     previous_ratio = ratio;
   }
+}
+
+}  // namespace
+
+TEST(Pendulum, JointDampingDecaysAsAViscousDamper) {
+  // A hinge damper c (N·m·s/rad) on I_pivot θ̈ = −m g L θ − c θ̇ decays the amplitude as
+  // exp(−c t / (2 I_pivot)); BDF-2 with h = 1e-2 adds ≈ 1e-4 of its own. More c, less amplitude.
+  expect_viscous_decay("hinge");
+}
+
+TEST(Pendulum, BallJointDampingDecaysAsAViscousDamper) {
+  // A ball-joint damper c damps the bob's angular velocity relative to the world: a torque
+  // −c ω, so the planar swing obeys the same I_pivot θ̈ = −m g L θ − c θ̇ as the hinge above, and
+  // its peaks (at t = kπ/ω_d for a release at rest) lie on exp(−c t / (2 I_pivot)). Errors:
+  // BDF-2's own decay ≈ 1e-4 at h = 1e-2, the peak's time known to a step, the affine body's
+  // slight non-rigidity in ω = ½ Σ f_k × ḟ_k: well inside 1 %.
+  expect_viscous_decay("ball");
 }
 
 TEST(ContactDamping, BounceHeightDecreasesAsKdGrows) {
