@@ -5,19 +5,24 @@
 /// state lies from the run with the first backend (the largest surface-point distance, m).
 /// Scenes: the files named (rigid piles, hybrid scenes) and the soft scenes again at finer
 /// `mesh_size` (--refine; bodies that set one), so the table spans from a hundred to tens of thousands of DOFs.
+/// With --start T every run begins from the state the first backend reached at time T (one
+/// untimed warm-up per scene, Simulation::state / restore), e.g. a pile in contact.
 /// Under `mpirun -n N` every rank runs the scenes and the PETSc backends solve distributed
 /// (CHOLMOD then solves redundantly on every rank); rank 0 prints and writes the CSV.
 ///
 ///     linear_solver_runs_bench --scenes light,medium,full,cube_on_mattress --steps 20
 ///     mpirun -n 2 linear_solver_runs_bench --scenes full --backends cholmod,petsc:cg:icc
+///     linear_solver_runs_bench --scenes medium,full --start 0.6 --steps 10
 
 #include <tbb/global_control.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 
 #include "coupling/linear_solver/linear_solver.hpp"
 #include "coupling/linear_solver/petsc_session.hpp"
@@ -86,8 +91,8 @@ struct SceneCase {
   double refine = 1;
 };
 
-RunRow run_case(const SceneCase& c, const std::string& backend, int steps, double dt,
-                Eigen::MatrixX3d& end_surface) {
+/// The case's scene (refined, with the time step override) as a model and its settings.
+std::pair<Model, SimulationSettings> build_case(const SceneCase& c, double dt) {
   SceneDescription scene = load_scene(c.file);
   if (dt > 0) scene.time.dt = dt;
   if (c.refine != 1)
@@ -96,6 +101,22 @@ RunRow run_case(const SceneCase& c, const std::string& backend, int steps, doubl
   Model model = build_model(scene, c.file);
   resolve_relative_defaults(scene, model);
   SimulationSettings settings = simulation_settings(scene);
+  return {std::move(model), settings};
+}
+
+/// The state the case reaches at time `start` with `backend` (untimed warm-up).
+SimulationState warm_up(const SceneCase& c, const std::string& backend, double dt, double start) {
+  auto [model, settings] = build_case(c, dt);
+  settings.linear_solver = backend;
+  Simulation sim(std::move(model), settings);
+  const int steps = int(std::lround(start / settings.h));
+  for (int k = 0; k < steps; ++k) sim.step();
+  return sim.state();
+}
+
+RunRow run_case(const SceneCase& c, const std::string& backend, int steps, double dt,
+                const std::optional<SimulationState>& start, Eigen::MatrixX3d& end_surface) {
+  auto [model, settings] = build_case(c, dt);
   static SolveLog* log = nullptr;
   static std::string inner;
   SolveLog kept;
@@ -106,11 +127,17 @@ RunRow run_case(const SceneCase& c, const std::string& backend, int steps, doubl
 
   RunRow row;
   row.scene = c.label;
+  if (start) {
+    char from[48];
+    std::snprintf(from, sizeof from, " from t = %g s", start->time);
+    row.scene += from;
+  }
   row.backend = backend;
   row.dofs = model.num_dofs;
   row.tets = int(model.nodes.T.rows());
   row.ranks = PetscSession::size();
   Simulation sim(std::move(model), settings);
+  if (start) sim.restore(*start);
   std::vector<double> ms, newton, residuals;
   for (int k = 0; k < steps; ++k) {
     const StepStats s = sim.step();
@@ -143,7 +170,7 @@ int main(int argc, char** argv) {
   std::vector<double> refine{0.7, 0.5};
   std::vector<std::string> backends{"cholmod", "petsc:cg:icc", "petsc:cg:vpbjacobi", "petsc:cg:gamg", "auto"};
   int steps = 20, threads = 0;
-  double dt = 0;
+  double dt = 0, start = 0;
   std::filesystem::path scene_dir = STIFFSOFT_SOURCE_DIR "/scenes", csv = "linear_solver_runs.csv";
   app.add_option("--scenes", scenes, "scene names in the scene folder")->delimiter(',');
   app.add_option("--refine", refine, "soft scenes are run again with mesh_size × each factor")->delimiter(',');
@@ -151,6 +178,7 @@ int main(int argc, char** argv) {
       ->delimiter(',');
   app.add_option("--steps", steps, "steps per run");
   app.add_option("--dt", dt, "time step override (s); 0: the scene's");
+  app.add_option("--start", start, "simulated time (s) reached with the first backend before the timed steps");
   app.add_option("--threads", threads, "worker threads (0: all cores)");
   app.add_option("--scene-dir", scene_dir, "folder of the scenes");
   app.add_option("--csv", csv, "CSV output file (rank 0)");
@@ -184,11 +212,20 @@ int main(int argc, char** argv) {
   }
   for (const SceneCase& c : cases) {
     Eigen::MatrixX3d reference;
+    std::optional<SimulationState> state;
+    if (start > 0) {
+      const auto t0 = std::chrono::steady_clock::now();
+      state = warm_up(c, backends.front(), dt, start);
+      if (root)
+        std::fprintf(stderr, "%s: warm-up to t = %g s with %s took %.0f s\n", c.label.c_str(), state->time,
+                     backends.front().c_str(),
+                     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    }
     for (std::size_t i = 0; i < backends.size(); ++i) {
       Eigen::MatrixX3d end;
       RunRow r;
       try {
-        r = run_case(c, backends[i], steps, dt, end);
+        r = run_case(c, backends[i], steps, dt, state, end);
       } catch (const std::exception& e) {
         if (root) std::fprintf(stderr, "%s on %s: %s\n", backends[i].c_str(), c.label.c_str(), e.what());
         continue;

@@ -176,6 +176,24 @@ StepStats Simulation::step() {
   return stats;
 }
 
+SimulationState Simulation::state() const {
+  return {m_time, m_step, m_q, m_qdot, m_q_prev, m_qdot_prev, m_barrier.kappa(), m_barrier.kappa_balanced()};
+}
+
+void Simulation::restore(const SimulationState& s) {
+  const Eigen::Index n = m_q.size();
+  if (s.q.size() != n || s.qdot.size() != n || s.q_prev.size() != n || s.qdot_prev.size() != n)
+    throw std::invalid_argument("Simulation::restore: the state has " + std::to_string(s.q.size()) +
+                                " DOFs, this model " + std::to_string(n));
+  m_time = s.time;
+  m_step = s.step;
+  m_q = s.q;
+  m_qdot = s.qdot;
+  m_q_prev = s.q_prev;
+  m_qdot_prev = s.qdot_prev;
+  m_barrier.restore_stiffness(s.kappa, s.kappa_balanced);
+}
+
 Eigen::VectorXd Simulation::initial_guess(const Eigen::VectorXd& q_tilde, const Configuration& c_n) const {
   Eigen::VectorXd q_start = q_tilde;
   for (const BodyModel& body : m_model.bodies) {

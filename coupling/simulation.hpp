@@ -59,6 +59,16 @@ struct StepStats {
   double seconds = 0;            ///< wall time of the whole step (s)
 };
 
+/// What changes from step to step: enough for another Simulation of the same model and
+/// settings (its linear solver may differ) to continue the run exactly from here.
+struct SimulationState {
+  double time = 0;                          ///< simulated time (s)
+  int step = 0;                             ///< steps taken
+  Eigen::VectorXd q, qdot, q_prev, qdot_prev;  ///< DOFs and velocities now and one step back
+  double kappa = 0;                         ///< the barrier's adaptive stiffness κ
+  bool kappa_balanced = false;              ///< whether κ was balanced at first contact already
+};
+
 /// A model advanced in time.
 class Simulation {
  public:
@@ -66,6 +76,11 @@ class Simulation {
   Simulation(Model model, const SimulationSettings& settings);
   /// Advances by one step h.
   StepStats step();
+  /// The state now (a copy).
+  SimulationState state() const;
+  /// Continues from `s`, taken from a Simulation of the same model and settings;
+  /// std::invalid_argument when its vectors do not match this model's DOFs.
+  void restore(const SimulationState& s);
   /// Simulated time (s).
   double time() const { return m_time; }
   /// The model.

@@ -48,6 +48,13 @@ class BarrierTerm final : public EnergyTerm {
   void initialize_stiffness(const Configuration& c, const Eigen::VectorXd& grad_other);
   /// Current κ (J/m⁴ in squared-distance units, i.e. κ b has units of energy).
   double kappa() const { return m_kappa; }
+  /// Whether initialize_stiffness has balanced κ already (it does so once per run).
+  bool kappa_balanced() const { return m_balanced; }
+  /// Continues a run from a saved κ and balance flag (Simulation::restore).
+  void restore_stiffness(double kappa, bool balanced) {
+    m_kappa = kappa;
+    m_balanced = balanced;
+  }
   /// Active contacts at the last update.
   const std::vector<ContactConstraint>& constraints() const { return m_constraints; }
   /// Smallest distance among active contacts at the last update (m), +∞ with none.
