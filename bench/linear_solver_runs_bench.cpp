@@ -7,6 +7,7 @@
 /// `mesh_size` (--refine; bodies that set one), so the table spans from a hundred to tens of thousands of DOFs.
 /// With --start T every run begins from the state the first backend reached at time T (one
 /// untimed warm-up per scene, Simulation::state / restore), e.g. a pile in contact.
+/// With --krylov-rtol-max every Krylov backend runs once per cap η_max of the forcing terms.
 /// Under `mpirun -n N` every rank runs the scenes and the PETSc backends solve distributed
 /// (CHOLMOD then solves redundantly on every rank); rank 0 prints and writes the CSV.
 ///
@@ -114,9 +115,23 @@ SimulationState warm_up(const SceneCase& c, const std::string& backend, double d
   return sim.state();
 }
 
-RunRow run_case(const SceneCase& c, const std::string& backend, int steps, double dt,
+/// One backend, and for a Krylov backend the forcing terms' cap η_max (unset: the scene's).
+struct BackendCase {
+  std::string name;
+  std::optional<double> rtol_max;
+  std::string label() const {
+    if (!rtol_max) return name;
+    char text[32];
+    std::snprintf(text, sizeof text, " (η_max %g)", *rtol_max);
+    return name + text;
+  }
+};
+
+RunRow run_case(const SceneCase& c, const BackendCase& b, int steps, double dt,
                 const std::optional<SimulationState>& start, Eigen::MatrixX3d& end_surface) {
   auto [model, settings] = build_case(c, dt);
+  const std::string& backend = b.name;
+  if (b.rtol_max) settings.krylov_rtol_max = *b.rtol_max;
   static SolveLog* log = nullptr;
   static std::string inner;
   SolveLog kept;
@@ -132,7 +147,7 @@ RunRow run_case(const SceneCase& c, const std::string& backend, int steps, doubl
     std::snprintf(from, sizeof from, " from t = %g s", start->time);
     row.scene += from;
   }
-  row.backend = backend;
+  row.backend = b.label();
   row.dofs = model.num_dofs;
   row.tets = int(model.nodes.T.rows());
   row.ranks = PetscSession::size();
@@ -169,12 +184,16 @@ int main(int argc, char** argv) {
   std::vector<std::string> scenes{"light", "medium", "full", "mixed_pile", "cube_on_mattress"};
   std::vector<double> refine{0.7, 0.5};
   std::vector<std::string> backends{"cholmod", "petsc:cg:icc", "petsc:cg:vpbjacobi", "petsc:cg:gamg", "auto"};
+  std::vector<double> rtol_max;
   int steps = 20, threads = 0;
   double dt = 0, start = 0;
   std::filesystem::path scene_dir = STIFFSOFT_SOURCE_DIR "/scenes", csv = "linear_solver_runs.csv";
   app.add_option("--scenes", scenes, "scene names in the scene folder")->delimiter(',');
   app.add_option("--refine", refine, "soft scenes are run again with mesh_size × each factor")->delimiter(',');
   app.add_option("--backends", backends, "linear solvers (make_linear_solver names); the first is the reference")
+      ->delimiter(',');
+  app.add_option("--krylov-rtol-max", rtol_max,
+                 "run every Krylov backend once per forcing-term cap η_max (default: the scene's)")
       ->delimiter(',');
   app.add_option("--steps", steps, "steps per run");
   app.add_option("--dt", dt, "time step override (s); 0: the scene's");
@@ -201,6 +220,14 @@ int main(int argc, char** argv) {
       }
   }
 
+  std::vector<BackendCase> runs;
+  for (const std::string& name : backends) {
+    const bool krylov = name != "cholmod";  // auto may pick PETSc
+    if (!krylov || rtol_max.empty()) runs.push_back({name, std::nullopt});
+    else
+      for (const double eta : rtol_max) runs.push_back({name, eta});
+  }
+
   std::ofstream out;
   if (root) {
     out.open(csv);
@@ -221,13 +248,13 @@ int main(int argc, char** argv) {
                      backends.front().c_str(),
                      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     }
-    for (std::size_t i = 0; i < backends.size(); ++i) {
+    for (std::size_t i = 0; i < runs.size(); ++i) {
       Eigen::MatrixX3d end;
       RunRow r;
       try {
-        r = run_case(c, backends[i], steps, dt, state, end);
+        r = run_case(c, runs[i], steps, dt, state, end);
       } catch (const std::exception& e) {
-        if (root) std::fprintf(stderr, "%s on %s: %s\n", backends[i].c_str(), c.label.c_str(), e.what());
+        if (root) std::fprintf(stderr, "%s on %s: %s\n", runs[i].label().c_str(), c.label.c_str(), e.what());
         continue;
       }
       if (i == 0) reference = end;

@@ -5,7 +5,8 @@
 
 Rows of all CSVs are merged. The Markdown table has one row per scene, rank count and backend;
 the plot shows milliseconds per step (left) and per linear solve (right) against DOFs, one
-line per backend and rank count, log-log. Without matplotlib (python3-matplotlib) the plot
+line per backend, rank count and start (runs from a --start state are series of their own,
+square markers), log-log. Without matplotlib (python3-matplotlib) the plot
 is skipped with a message and the table is still written.
 """
 import argparse
@@ -58,15 +59,20 @@ def plot(rows, path):
         return
     series = {}
     for r in rows:
-        label = r["backend"] if r["ranks"] == 1 else f"{r['backend']} (mpirun -n {r['ranks']})"
+        label = r["backend"]
+        if " from t" in r["scene"]:  # --start: steps of a later, contact-rich state, a series of their own
+            label += ", from " + r["scene"].split(" from ", 1)[1]
+        if r["ranks"] > 1:
+            label += f" (mpirun -n {r['ranks']})"
         series.setdefault(label, []).append(r)
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
     for label, points in sorted(series.items()):
         points.sort(key=lambda r: r["dofs"])
         dofs = [r["dofs"] for r in points]
         style = "--" if "mpirun" in label else "-"
-        axes[0].plot(dofs, [r["ms_per_step"] for r in points], style, marker="o", label=label)
-        axes[1].plot(dofs, [r["ms_per_solve"] for r in points], style, marker="o", label=label)
+        marker = "s" if ", from t" in label else "o"
+        axes[0].plot(dofs, [r["ms_per_step"] for r in points], style, marker=marker, label=label)
+        axes[1].plot(dofs, [r["ms_per_solve"] for r in points], style, marker=marker, label=label)
     for ax, title in zip(axes, ("time per step", "time per linear solve (set-up + solve)")):
         ax.set_xscale("log")
         ax.set_yscale("log")

@@ -69,7 +69,8 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
     throw std::invalid_argument("newton_minimize: the " + solver.name() +
                                 " linear solver is iterative, which joints' eliminated equalities do not support; "
                                 "use cholmod");
-  if (solver.is_iterative()) {
+  // Direct backends ignore the block sizes and η; `auto` may turn iterative at any analysis.
+  if (!basis) {
     std::vector<int> sizes;
     for (const DofBlock& b : model.blocks) sizes.push_back(b.size);
     solver.set_block_sizes(sizes);
@@ -82,12 +83,10 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
       ScopedTimer timer(times.assembly);
       for (const EnergyTerm* t : terms) t->add_gradient(c, g);
     }
-    if (solver.is_iterative()) {
-      const double g_norm = g.norm();
-      eta = forcing_term(g_norm, g_norm_previous, eta);
-      g_norm_previous = g_norm;
-      solver.set_relative_tolerance(eta);
-    }
+    const double g_norm = g.norm();
+    eta = forcing_term(g_norm, g_norm_previous, eta, settings.forcing);
+    g_norm_previous = g_norm;
+    solver.set_relative_tolerance(eta);
     const bool solved = newton_direction(model, terms, c, g, solver, pattern, times, basis, p);
     const LinearSolveReport& linear = solver.last_report();
     report.linear_iterations += linear.iterations;

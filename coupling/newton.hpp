@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "coupling/joints/reduced_basis.hpp"
+#include "coupling/linear_solver/forcing_term.hpp"
 #include "coupling/linear_solver/linear_solver.hpp"
 #include "coupling/model.hpp"
 #include "coupling/phase_times.hpp"
@@ -19,6 +20,7 @@ struct NewtonSettings {
   double h = 1e-2;           ///< time step (s), to turn the step into a speed
   int max_iterations = 200;  ///< cap on iterations
   int max_line_search = 60;  ///< cap on halvings of α
+  ForcingTermSettings forcing;  ///< relative tolerances of Krylov solves (inexact Newton)
 };
 
 /// What one minimisation did.

@@ -124,6 +124,7 @@ StepStats Simulation::step() {
   ns.tolerance = m_settings.tolerance;
   ns.h = h;
   ns.max_iterations = m_settings.max_iterations;
+  ns.forcing.eta_max = m_settings.krylov_rtol_max;
   Eigen::VectorXd q_new = initial_guess(q_tilde, c_n);
   StepStats stats;
   stats.newton = newton_minimize(m_model, terms, q_new, *m_solver, ns, m_times, reduced_basis());

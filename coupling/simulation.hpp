@@ -34,6 +34,7 @@ struct SimulationSettings {
   double tolerance = 1e-2;                        ///< Newton's ε_d (m/s)
   int max_iterations = 200;                       ///< Newton iteration cap per step
   std::string linear_solver = "auto";             ///< linear solver backend (see make_linear_solver())
+  double krylov_rtol_max = ForcingTermSettings{}.eta_max;  ///< largest relative residual a Krylov solve may stop at (η_max)
   double kinematic_weight = 1e4;                  ///< inertia weight pulling kinematic bodies onto their path
   double contact_damping = 0;                     ///< lagged Rayleigh damping k_d of contacts (s); 0: none
   std::vector<ContactPairDamping> contact_pair_damping;  ///< k_d per body pair, replacing contact_damping there

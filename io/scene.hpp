@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "coupling/integrator.hpp"
+#include "coupling/linear_solver/forcing_term.hpp"
 #include "coupling/model.hpp"
 #include "meshing/primitive.hpp"
 
@@ -45,6 +46,7 @@ struct SolverDescription {
   std::optional<double> tolerance;  ///< ε_d (m/s): stop when max surface-point step / h < ε_d; default 1e-2 × diagonal / s
   int max_iterations = 200;         ///< Newton iteration cap per step, ≥ 1
   std::string linear = "auto";      ///< linear solver backend (see make_linear_solver())
+  double krylov_rtol_max = ForcingTermSettings{}.eta_max;  ///< η_max: largest relative residual a Krylov solve may stop at
 };
 
 /// `output`: what is written and how often.

@@ -387,6 +387,7 @@ SimulationSettings simulation_settings(const SceneDescription& scene) {
   s.tolerance = scene.solver.tolerance.value();
   s.max_iterations = scene.solver.max_iterations;
   s.linear_solver = scene.solver.linear;
+  s.krylov_rtol_max = scene.solver.krylov_rtol_max;
   return s;
 }
 

@@ -277,6 +277,7 @@ SceneDescription scene_from(const Json& scene, const std::string& name) {
   out.solver.tolerance = optional_number(solver.at("tolerance"));
   out.solver.max_iterations = solver.at("max_iterations").get<int>();
   out.solver.linear = solver.at("linear").get<std::string>();
+  out.solver.krylov_rtol_max = solver.at("krylov_rtol_max").get<double>();
 
   out.output.frame_dt = optional_number(scene.at("output").at("frame_dt"));
 
@@ -392,7 +393,8 @@ nlohmann::json resolved_scene_json(const SceneDescription& scene) {
     out["contact"]["pairs"].push_back({{"body_a", pair.body_a}, {"body_b", pair.body_b}, {"damping", pair.damping}});
   out["solver"] = {{"tolerance", optional_json(scene.solver.tolerance)},
                    {"max_iterations", scene.solver.max_iterations},
-                   {"linear", scene.solver.linear}};
+                   {"linear", scene.solver.linear},
+                   {"krylov_rtol_max", scene.solver.krylov_rtol_max}};
   out["output"] = {{"frame_dt", optional_json(scene.output.frame_dt)}};
   out["bodies"] = Json::array();
   for (const BodyDescription& body : scene.bodies) {

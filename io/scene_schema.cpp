@@ -61,6 +61,8 @@ constexpr const char* kSchemaText = R"JSON([
    "doc": "Newton iteration cap per time step."},
   {"pointer": "/solver/linear", "type": "string", "default": "auto",
    "doc": "Linear solver backend: cholmod (supernodal Cholesky), petsc (CG + ICC(0)), petsc:KSP[:PC] with KSP in cg, minres, gmres and PC in none, jacobi, pbjacobi, vpbjacobi, icc, gamg, hypre (e.g. petsc:cg:gamg), or auto: CHOLMOD while its factorisation is predicted to cost at most 2 Mflop, PETSc CG + ICC(0) above (see docs/linear_solvers.md). PETSc options on the command line (-ksp_type, -pc_type, ...) apply on top."},
+  {"pointer": "/solver/krylov_rtol_max", "type": "number", "default": 0.001, "exclusive_min": 0, "exclusive_max": 1,
+   "doc": "Inexact Newton: each Krylov solve stops at the relative residual η given by Eisenstat–Walker's forcing terms, capped by this η_max (see docs/linear_solvers.md); CHOLMOD ignores it."},
 
   {"pointer": "/output", "type": "object", "doc": "What is written and how often."},
   {"pointer": "/output/frame_dt", "type": "number", "default": null, "exclusive_min": 0, "unit": "s",

@@ -55,6 +55,8 @@ int main(int argc, char** argv) {
   app.add_option("--threads", threads, "stiffsoft worker threads (0: all cores); Bullet and MuJoCo use one");
   app.add_option("--scene-dir", scene_dir, "folder of the scenes");
   app.add_option("--csv", csv, "CSV output (appended rows are flushed after each run)");
+  app.add_option("--max-wall", options.max_wall_s,
+                 "stop a run after this much stepping wall time (s) and report it unfinished; 0: no limit");
   app.add_option("--check-fps", options.check_fps, "frames per simulated second checked for intersections");
   app.add_option("--bullet-margin", options.engines.bullet_margin,
                  "Bullet margin of hull and mesh shapes (m); 0: half the scene's d^");

@@ -15,6 +15,7 @@ quoted from ../shared/seeds/001 (its own machine) for the side-by-side ratios.
 import argparse
 import csv
 import math
+import re
 import os
 import sys
 
@@ -50,6 +51,20 @@ def fmt(x, digits=3):
     if x is None or (isinstance(x, float) and math.isnan(x)):
         return "–"
     return f"{x:.{digits}g}" if abs(x) < 10 ** digits else f"{x:.0f}"
+
+
+def unfinished(row):
+    """True for a run peer_bench stopped with --max-wall before its last step."""
+    return "stopped unfinished" in row.get("warnings", "")
+
+
+def unfinished_cell(row):
+    """An unfinished run's cell: its median covers only the first steps (often the cheap free
+    fall), so the cell gives what is certain: the whole run's mean is at least wall / planned."""
+    match = re.search(r"(\d+) of (\d+) steps", row["warnings"])
+    planned = int(match.group(2)) if match else int(row["steps"])
+    wall = num(row, "wall_s")
+    return f"unfinished: {row['steps']}/{planned} steps in {wall:.0f} s (mean ≥ {1e3 * wall / planned:.0f})"
 
 
 def mm(x):
@@ -97,13 +112,18 @@ def markdown(rows, comments):
     out.append("| " + " | ".join(head) + " |")
     out.append("|" + "---|" * len(head))
     for scene, per_s in keys:
-        any_row = next(rows[(e, scene, per_s)] for e in engines if (e, scene, per_s) in rows)
-        cells = [scene, any_row["bodies"], f"1/{per_s}", any_row["steps"]]
+        present = [rows[(e, scene, per_s)] for e in engines if (e, scene, per_s) in rows]
+        steps = max(int(r["steps"]) for r in present)
+        cells = [scene, present[0]["bodies"], f"1/{per_s}", str(steps)]
         ms = {}
         for e in engines:
             r = rows.get((e, scene, per_s))
             ms[e] = num(r, "ms_median") if r else math.nan
-            cells.append(fmt(ms[e]))
+            if r and unfinished(r):  # stopped by --max-wall: no ratio from a partial run
+                cells.append(unfinished_cell(r))
+                ms[e] = math.nan
+            else:
+                cells.append(fmt(ms[e]))
             if e in OURS:
                 cells.append(fmt(num(r, "newton_mean")) if r else "–")
         for o in ours:
@@ -187,7 +207,7 @@ def plot(rows, path, per_s=240):
     markers = {"stiffsoft": "o", "stiffsoft-coarse": "D", "bullet": "s", "mujoco": "^"}
     for e in ENGINES:
         points = sorted((int(r["bodies"]), num(r, "ms_median"), r["scene"]) for (en, s, p), r in rows.items()
-                        if en == e and p == per_s)
+                        if en == e and p == per_s and not unfinished(r))
         if not points:
             continue
         ax.plot([x for x, _, _ in points], [y for _, y, _ in points], marker=markers[e], linestyle="-", label=LABEL[e])

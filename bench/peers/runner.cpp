@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 
 #include "peers/machine.hpp"
@@ -29,8 +30,7 @@ RunResult run_engine(const std::string& name, const PeerScene& scene, double dur
   r.dynamic_bodies = scene.dynamic_bodies();
   r.triangles = scene.triangles;
   r.dt = scene.dt;
-  r.steps = std::max(1, int(std::lround(duration / scene.dt)));
-  r.duration = r.steps * scene.dt;
+  const int planned = std::max(1, int(std::lround(duration / scene.dt)));
   r.threads = name.rfind("stiffsoft", 0) == 0 ? options.threads : 1;
   r.load_before = load_average();
 
@@ -40,10 +40,13 @@ RunResult run_engine(const std::string& name, const PeerScene& scene, double dur
   const int check_every = std::max(1, int(std::lround(1.0 / (options.check_fps * scene.dt))));
   std::vector<double> ms, iterations;
   std::vector<double> broad, ccd, assembly, solve;
-  for (int k = 1; k <= r.steps; ++k) {
+  double wall_ms = 0;
+  for (int k = 1; k <= planned; ++k) {
     const auto start = std::chrono::steady_clock::now();
     engine->step();
     ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    wall_ms += ms.back();
+    const bool last = k == planned || (options.max_wall_s > 0 && wall_ms > 1e3 * options.max_wall_s);
     const double t = k * scene.dt;
     const StepDetails d = engine->details();
     if (d.newton_iterations >= 0) {
@@ -56,14 +59,17 @@ RunResult run_engine(const std::string& name, const PeerScene& scene, double dur
       monitor.distance(d.smallest_distance);
     }
     monitor.contacts(engine->penetrations(), t);
-    if (k % check_every == 0 || k == r.steps) {
-      if (k == r.steps) {
+    if (k % check_every == 0 || last) {
+      if (last) {
         engine->finish_probe();
         monitor.contacts(engine->penetrations(), t);
       }
       monitor.frame(*engine, t);
     }
+    if (last) break;
   }
+  r.steps = int(ms.size());
+  r.duration = r.steps * scene.dt;
   r.ms_median = median(ms);
   r.ms_mean = mean(ms);
   r.wall_s = std::accumulate(ms.begin(), ms.end(), 0.0) / 1e3;
@@ -76,6 +82,12 @@ RunResult run_engine(const std::string& name, const PeerScene& scene, double dur
   }
   r.accuracy = monitor.report();
   r.warnings = engine->warnings();
+  if (r.steps < planned) {
+    char text[160];
+    std::snprintf(text, sizeof text, "stopped unfinished after %.0f s of stepping (--max-wall): %d of %d steps",
+                  wall_ms / 1e3, r.steps, planned);
+    r.warnings = r.warnings.empty() ? text : r.warnings + "; " + text;
+  }
   r.statistics = engine->statistics();
   r.load_after = load_average();
   return r;

@@ -14,6 +14,7 @@ struct RunOptions {
   EngineOptions engines;    ///< engine settings
   double check_fps = 60;    ///< frames per simulated second checked for intersections and tunnelling
   int threads = 0;          ///< stiffsoft's worker threads (recorded; set by the caller); peers run on one
+  double max_wall_s = 0;    ///< a run stops after this much stepping wall time (s), unfinished; 0: no limit
 };
 
 /// The result of one run: a row of the CSV.
@@ -24,7 +25,7 @@ struct RunResult {
   int dynamic_bodies = 0;     ///< non-fixed bodies
   int triangles = 0;          ///< triangles of all bodies
   double dt = 0;              ///< time step h (s)
-  int steps = 0;              ///< steps run
+  int steps = 0;              ///< steps run (fewer than round(duration / h) when stopped by max_wall_s)
   double duration = 0;        ///< simulated time (s)
   double ms_median = 0;       ///< median wall time per step (ms)
   double ms_mean = 0;         ///< mean wall time per step (ms)
@@ -44,7 +45,8 @@ struct RunResult {
   double load_after = -1;     ///< and after
 };
 
-/// Runs `engine` on `scene` for round(duration / h) steps, timing each step() alone.
+/// Runs `engine` on `scene` for round(duration / h) steps, timing each step() alone; with
+/// options.max_wall_s, stops after the step that exceeds it and says so in the warnings.
 RunResult run_engine(const std::string& engine, const PeerScene& scene, double duration, const RunOptions& options);
 
 }  // namespace stiffsoft::peers

@@ -510,26 +510,34 @@ TEST(SplitPetscArguments, PetscOptionsGoToPetscAndTheRestToTheProgram) {
 }
 
 TEST(ForcingTerm, FollowsEisenstatWalkerChoiceTwoWithItsSafeguards) {
-  const ForcingTermSettings s;
+  ForcingTermSettings s;
+  s.eta_max = 0.9;  // Eisenstat–Walker's own cap, so that the formula shows (the default is tighter)
   // No previous iteration: η_0.
-  EXPECT_DOUBLE_EQ(forcing_term(1.0, 0.0, 0.0), s.eta_initial);
+  EXPECT_DOUBLE_EQ(forcing_term(1.0, 0.0, 0.0, s), s.eta_initial);
   // γ (‖g_k‖/‖g_{k−1}‖)^α when the safeguard is inactive (γ η_{k−1}^α ≤ 0.1).
   const double eta_previous = 0.05;
-  EXPECT_NEAR(forcing_term(0.3, 1.0, eta_previous), 0.9 * std::pow(0.3, s.alpha), 1e-15);
+  EXPECT_NEAR(forcing_term(0.3, 1.0, eta_previous, s), 0.9 * std::pow(0.3, s.alpha), 1e-15);
   // Safeguard: after a large η, a sudden drop is limited to γ η_{k−1}^α.
-  EXPECT_NEAR(forcing_term(1e-3, 1.0, 0.5), 0.9 * std::pow(0.5, s.alpha), 1e-15);
+  EXPECT_NEAR(forcing_term(1e-3, 1.0, 0.5, s), 0.9 * std::pow(0.5, s.alpha), 1e-15);
   // Bounds.
-  EXPECT_DOUBLE_EQ(forcing_term(2.0, 1.0, 0.01), s.eta_max);
-  EXPECT_DOUBLE_EQ(forcing_term(1e-12, 1.0, 1e-6), s.eta_min);
+  EXPECT_DOUBLE_EQ(forcing_term(2.0, 1.0, 0.01, s), s.eta_max);
+  EXPECT_DOUBLE_EQ(forcing_term(1e-12, 1.0, 1e-6, s), s.eta_min);
   // The sequence tightens as ‖g‖ converges quadratically.
-  double eta = forcing_term(1.0, 0.0, 0.0), g_prev = 1.0;
+  double eta = forcing_term(1.0, 0.0, 0.0, s), g_prev = 1.0;
   for (const double g : {0.5, 0.1, 1e-3, 1e-7}) {
-    const double next = forcing_term(g, g_prev, eta);
+    const double next = forcing_term(g, g_prev, eta, s);
     EXPECT_LE(next, eta);
     eta = next;
     g_prev = g;
   }
   EXPECT_LT(eta, 1e-6);
+}
+
+TEST(ForcingTerm, TheDefaultCapHoldsEveryStepTight) {
+  const ForcingTermSettings s;
+  EXPECT_DOUBLE_EQ(forcing_term(1.0, 0.0, 0.0), s.eta_max);  // η_0 is clamped too
+  EXPECT_DOUBLE_EQ(forcing_term(2.0, 1.0, s.eta_max), s.eta_max);
+  EXPECT_LT(forcing_term(1e-3, 1.0, s.eta_max), s.eta_max);  // and tightens as ‖g‖ converges
 }
 
 // --- MPI -------------------------------------------------------------------------------------

@@ -48,6 +48,7 @@ const BrokenCase kBroken[] = {
     {"mesh_wrong_type.json", "bodies[0].mesh: must be a mesh file path (string) or an object (got 5)"},
     {"root_not_object.json", "(root): must be an object (got an array of 2)"},
     {"zero_max_iterations.json", "solver.max_iterations: must be >= 1 (got 0)"},
+    {"krylov_rtol_max_one.json", "solver.krylov_rtol_max: must be < 1 (got 1)"},
     {"empty_body_name.json", "bodies[0].name: must not be empty"},
     {"unknown_linear_solver.json", "solver.linear: unknown linear solver 'magic' (available: cholmod, auto, petsc"},
     {"unknown_preconditioner.json", "solver.linear: PETSc backend: unknown preconditioner 'ilu' (available: none, jacobi"},
@@ -129,6 +130,7 @@ TEST(SceneLoader, AGoodSceneKeepsEveryValueItGives) {
   EXPECT_EQ(s.solver.tolerance, 0.003);
   EXPECT_EQ(s.solver.max_iterations, 17);
   EXPECT_EQ(s.solver.linear, "cholmod");
+  EXPECT_EQ(s.solver.krylov_rtol_max, 0.01);
   EXPECT_EQ(s.output.frame_dt, 0.05);
   ASSERT_EQ(s.bodies.size(), 7u);
 
@@ -202,6 +204,7 @@ TEST(SceneLoader, DefaultsAreFilledFromTheSchema) {
   EXPECT_FALSE(s.solver.tolerance.has_value());
   EXPECT_EQ(s.solver.max_iterations, 200);
   EXPECT_EQ(s.solver.linear, "auto");
+  EXPECT_EQ(s.solver.krylov_rtol_max, ForcingTermSettings{}.eta_max);  // the schema agrees with the code
   EXPECT_FALSE(s.output.frame_dt.has_value());
   ASSERT_EQ(s.bodies.size(), 1u);
   const BodyDescription& b = s.bodies[0];
@@ -232,6 +235,7 @@ void expect_same_scene(const SceneDescription& a, const SceneDescription& b) {
   EXPECT_EQ(a.solver.tolerance, b.solver.tolerance);
   EXPECT_EQ(a.solver.max_iterations, b.solver.max_iterations);
   EXPECT_EQ(a.solver.linear, b.solver.linear);
+  EXPECT_EQ(a.solver.krylov_rtol_max, b.solver.krylov_rtol_max);
   EXPECT_EQ(a.output.frame_dt, b.output.frame_dt);
   ASSERT_EQ(a.bodies.size(), b.bodies.size());
   for (std::size_t i = 0; i < a.bodies.size(); ++i) {
