@@ -5,9 +5,10 @@
 
 Rows of all CSVs are merged. The Markdown table has one row per scene, rank count and backend;
 the plot shows milliseconds per step (left) and per linear solve (right) against DOFs, one
-line per backend, rank count and start (runs from a --start state are series of their own,
-square markers), log-log. Without matplotlib (python3-matplotlib) the plot
-is skipped with a message and the table is still written.
+line per backend (its colour), rank count and start (runs from a --start state are series
+of their own: square markers, dotted on one rank, dashed under mpirun), log-log. Without
+matplotlib (python3-matplotlib) the plot is skipped with a message and the table is still
+written.
 """
 import argparse
 import csv
@@ -66,13 +67,17 @@ def plot(rows, path):
             label += f" (mpirun -n {r['ranks']})"
         series.setdefault(label, []).append(r)
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
+    # One colour per backend; the line style tells the start and the rank count apart.
+    backends = sorted({r["backend"] for r in rows})
+    colour = {b: plt.get_cmap("tab10")(i % 10) for i, b in enumerate(backends)}
     for label, points in sorted(series.items()):
         points.sort(key=lambda r: r["dofs"])
         dofs = [r["dofs"] for r in points]
-        style = "--" if "mpirun" in label else "-"
+        style = "--" if "mpirun" in label else (":" if ", from t" in label else "-")
         marker = "s" if ", from t" in label else "o"
-        axes[0].plot(dofs, [r["ms_per_step"] for r in points], style, marker=marker, label=label)
-        axes[1].plot(dofs, [r["ms_per_solve"] for r in points], style, marker=marker, label=label)
+        c = colour[points[0]["backend"]]
+        axes[0].plot(dofs, [r["ms_per_step"] for r in points], style, color=c, marker=marker, label=label)
+        axes[1].plot(dofs, [r["ms_per_solve"] for r in points], style, color=c, marker=marker, label=label)
     for ax, title in zip(axes, ("time per step", "time per linear solve (set-up + solve)")):
         ax.set_xscale("log")
         ax.set_yscale("log")

@@ -96,7 +96,7 @@ def markdown(rows, comments):
     out = []
     for c in comments:
         out.append(f"- {c}")
-    durations = sorted({r["duration_s"] for r in rows.values()})
+    durations = sorted({r["duration_s"] for r in rows.values() if not unfinished(r)})
     out.append(f"- simulated time per run: {', '.join(d + ' s' for d in durations)}")
     out.append("")
     head = ["scene", "bodies", "h", "steps"]

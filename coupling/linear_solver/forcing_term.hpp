@@ -16,10 +16,10 @@ struct ForcingTermSettings {
   double eta_initial = 0.5;           ///< η_0, for the first Newton iteration of a minimisation (then clamped)
   double gamma = 0.9;                 ///< γ ∈ (0, 1]
   double alpha = 1.6180339887498949;  ///< α ∈ (1, 2]; local convergence then has q-order α
-  /// Upper bound; η ≥ 1 would allow p = 0. Measured (docs/linear_solvers.md, "Forcing terms"):
-  /// every Newton iteration also costs assembly, CCD and a line search, which outweigh a
-  /// Krylov solve on every scene measured, so loose solves (η_max 0.5) cost more steps' time
-  /// through extra Newton iterations (16.4 against 2.0 per step on a 905-body pile) than they
+  /// Upper bound; η ≥ 1 would allow p = 0. Measured (docs/linear_solvers.md, "Inexact
+  /// Newton"): every Newton iteration also costs assembly, CCD and a line search, which
+  /// outweigh a Krylov solve on every scene measured, so loose solves (η_max 0.5) cost more
+  /// time in extra Newton iterations (16.4 against 2.0 per step on a 905-body pile) than they
   /// save in the solve; 1e-3 gave exact Newton's iteration count at the least time per step.
   double eta_max = 1e-3;
   double eta_min = 1e-8;             ///< lower bound: below it a Krylov solve only chases round-off
