@@ -2,8 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
-#include "io/frame_reader.hpp"
-#include "meshing/intersection.hpp"
+#include <stiffsoft/io/frame_reader.hpp>
+#include <stiffsoft/meshing/intersection.hpp>
 
 namespace stiffsoft {
 

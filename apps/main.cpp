@@ -1,4 +1,5 @@
-/// @file The `stiffsoft` command: run a scene, check written frames, run a convergence study, print versions.
+/// @file The `stiffsoft` command: run a scene, check written frames, run a convergence study, print the
+/// scene schema, print versions.
 
 #include <CLI/CLI.hpp>
 #include <gmsh.h>
@@ -10,11 +11,12 @@
 #include <iostream>
 
 #include "check_command.hpp"
-#include "coupling/linear_solver/petsc_session.hpp"
-#include "io/scene_schema.hpp"
+#include "apps/cli/petsc_command_line.hpp"
+#include <stiffsoft/scene/scene_schema.hpp>
 #include "run_command.hpp"
-#include "study/study.hpp"
-#include "study/study_spec.hpp"
+#include "schema_command.hpp"
+#include <stiffsoft/study/study.hpp>
+#include <stiffsoft/study/study_spec.hpp>
 
 namespace {
 std::string version_text() {
@@ -29,7 +31,7 @@ int main(int argc, char** argv) {
   // PETSc's options (-ksp_type cg, -pc_type gamg, -ksp_monitor, -log_view, …) go to PETSc;
   // under `mpirun -n N` every rank runs the scene, the linear solve is distributed and only
   // rank 0 logs and writes.
-  stiffsoft::PetscSession petsc(argc, argv);
+  stiffsoft::PetscCommandLine petsc(argc, argv);
   if (stiffsoft::PetscSession::rank() != 0) spdlog::set_level(spdlog::level::off);
   CLI::App app{"stiffsoft: stiff (affine) and soft solids in contact, intersection-free"};
   app.set_version_flag("--version", version_text());
@@ -53,11 +55,17 @@ int main(int argc, char** argv) {
   study_cmd->add_option("--jobs", study.jobs, "runs at a time (default: the number of cores)")->check(CLI::NonNegativeNumber);
   study_cmd->add_flag("!--no-check", study.check, "skip `stiffsoft check` of every run's frames");
 
+  bool markdown = false;
+  CLI::App* schema_cmd = app.add_subcommand("schema", "print the scene schema: every key of a scene file, as JSON");
+  schema_cmd->add_flag("--markdown", markdown,
+                       "print it as the Markdown page docs/scenes.md instead (stiffsoft schema --markdown > docs/scenes.md)");
+
   CLI11_PARSE(app, petsc.program_argc(), petsc.program_argv());
   try {
     if (*run_cmd) return stiffsoft::run_scene(run);
     if (*check_cmd) return stiffsoft::check_frames(pvd);
     if (*study_cmd) return stiffsoft::study::run_study(study);
+    if (*schema_cmd) return stiffsoft::print_schema(markdown, std::cout);
   } catch (const stiffsoft::study::StudyError& e) {
     spdlog::error("{}", e.what());
     return 2;

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "coupling/ccd/query_file.hpp"
+#include <stiffsoft/coupling/ccd/query_file.hpp>
 
 namespace {
 

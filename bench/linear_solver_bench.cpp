@@ -19,13 +19,13 @@
 #include <iostream>
 #include <random>
 
-#include "coupling/linear_solver/cholmod_solver.hpp"
-#include "coupling/linear_solver/linear_solver.hpp"
-#include "coupling/linear_solver/linear_system_io.hpp"
-#include "coupling/linear_solver/petsc_session.hpp"
-#include "coupling/linear_solver/recording_solver.hpp"
-#include "io/scene_builder.hpp"
-#include "io/scene_loader.hpp"
+#include <stiffsoft/coupling/linear_solver/cholmod_solver.hpp>
+#include <stiffsoft/coupling/linear_solver/linear_solver.hpp>
+#include <stiffsoft/coupling/linear_solver/linear_system_io.hpp>
+#include "apps/cli/petsc_command_line.hpp"
+#include <stiffsoft/coupling/linear_solver/recording_solver.hpp>
+#include <stiffsoft/scene/make_simulation.hpp>
+#include <stiffsoft/scene/scene_loader.hpp>
 
 #include "bench_statistics.hpp"
 
@@ -43,9 +43,7 @@ using stiffsoft::bench::median;
 LinearSystem densest_system(const std::filesystem::path& file, int steps, double dt) {
   SceneDescription scene = load_scene(file);
   if (dt > 0) scene.time.dt = dt;
-  Model model = build_model(scene, file);
-  resolve_relative_defaults(scene, model);
-  SimulationSettings settings = simulation_settings(scene);
+  auto [resolved, model, settings] = prepare_scene(scene, file.string());
   static LinearSystem* best = nullptr;
   static int step = 0;
   LinearSystem kept;
@@ -151,7 +149,7 @@ Row measure(const LinearSystem& s, const std::string& backend, double rtol, int 
 }  // namespace
 
 int main(int argc, char** argv) {
-  PetscSession petsc(argc, argv);
+  PetscCommandLine petsc(argc, argv);
   const bool root = PetscSession::rank() == 0;
   CLI::App app{"stiffsoft linear-solver benchmark: every backend on the same Newton systems"};
   std::vector<std::string> scenes{"light", "medium", "full"};

@@ -25,10 +25,10 @@
 #include <fstream>
 #include <optional>
 
-#include "coupling/linear_solver/linear_solver.hpp"
-#include "coupling/linear_solver/petsc_session.hpp"
-#include "io/scene_builder.hpp"
-#include "io/scene_loader.hpp"
+#include <stiffsoft/coupling/linear_solver/linear_solver.hpp>
+#include "apps/cli/petsc_command_line.hpp"
+#include <stiffsoft/scene/make_simulation.hpp>
+#include <stiffsoft/scene/scene_loader.hpp>
 
 #include "bench_statistics.hpp"
 
@@ -99,10 +99,8 @@ std::pair<Model, SimulationSettings> build_case(const SceneCase& c, double dt) {
   if (c.refine != 1)
     for (BodyDescription& b : scene.bodies)
       if (b.model == ModelChoice::Soft && b.mesh_size) *b.mesh_size *= c.refine;
-  Model model = build_model(scene, c.file);
-  resolve_relative_defaults(scene, model);
-  SimulationSettings settings = simulation_settings(scene);
-  return {std::move(model), settings};
+  PreparedScene p = prepare_scene(scene, c.file.string());
+  return {std::move(p.model), p.settings};
 }
 
 /// The state the case reaches at time `start` with `backend` (untimed warm-up).
@@ -178,7 +176,7 @@ RunRow run_case(const SceneCase& c, const BackendCase& b, int steps, double dt,
 }  // namespace
 
 int main(int argc, char** argv) {
-  PetscSession petsc(argc, argv);
+  PetscCommandLine petsc(argc, argv);
   const bool root = PetscSession::rank() == 0;
   CLI::App app{"stiffsoft whole-run linear-solver benchmark: each scene with each backend"};
   std::vector<std::string> scenes{"light", "medium", "full", "mixed_pile", "cube_on_mattress"};

@@ -12,8 +12,8 @@
 #include <memory>
 #include <numeric>
 
-#include "io/scene_builder.hpp"
-#include "io/scene_loader.hpp"
+#include <stiffsoft/scene/make_simulation.hpp>
+#include <stiffsoft/scene/scene_loader.hpp>
 
 #include "bench_statistics.hpp"
 
@@ -38,11 +38,10 @@ struct Row {
 Row run(const std::filesystem::path& file, double dt, int steps) {
   SceneDescription scene = load_scene(file);
   scene.time.dt = dt;
-  Model model = build_model(scene, file);
-  resolve_relative_defaults(scene, model);
+  auto [resolved, model, settings] = prepare_scene(scene, file.string());
   Row row{scene.name, int(model.bodies.size()), model.num_dofs, int(model.nodes.T.rows()), int(model.mesh.F.rows()),
           dt, steps, 0, 0, 0, 0, 0, 0, 0};
-  Simulation sim(std::move(model), simulation_settings(scene));
+  Simulation sim(std::move(model), settings);
   std::vector<double> ms, iterations, bp, ccd, assembly, solve;
   for (int k = 0; k < steps; ++k) {
     const StepStats s = sim.step();

@@ -1,27 +1,14 @@
-# stiffsoft_library(NAME) — one static library per top-level folder, from every .cpp below it.
-function(stiffsoft_library name)
-  file(GLOB_RECURSE sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cpp)
+# stiffsoft_library(NAME FOLDER) — one static library per part of the pipeline, from every .cpp
+# below stiffsoft/FOLDER; exported (installed) as stiffsoft::NAME. Headers are included as
+# <stiffsoft/FOLDER/...>, from the source tree in a build and from PREFIX/include once installed.
+function(stiffsoft_library name folder)
+  file(GLOB_RECURSE sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/stiffsoft/${folder}/*.cpp)
   add_library(stiffsoft_${name} STATIC ${sources})
   add_library(stiffsoft::${name} ALIAS stiffsoft_${name})
-  target_include_directories(stiffsoft_${name} PUBLIC ${PROJECT_SOURCE_DIR})
+  set_target_properties(stiffsoft_${name} PROPERTIES EXPORT_NAME ${name} POSITION_INDEPENDENT_CODE ON)
+  target_include_directories(stiffsoft_${name} PUBLIC
+    $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}> $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+  target_compile_features(stiffsoft_${name} PUBLIC cxx_std_20)
   target_compile_options(stiffsoft_${name} PRIVATE -Wall -Wextra)
-endfunction()
-
-# stiffsoft_tests(NAME LIBS...) — one GoogleTest executable from tests/NAME/*_test.cpp.
-function(stiffsoft_tests name)
-  file(GLOB_RECURSE sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${name}/*_test.cpp)
-  if(NOT sources)
-    return()
-  endif()
-  add_executable(${name}_tests ${sources})
-  target_link_libraries(${name}_tests PRIVATE ${ARGN} stiffsoft_test_support GTest::gtest_main)
-  if(name STREQUAL "apps")
-    add_dependencies(${name}_tests stiffsoft)  # its tests run the binary
-  endif()
-  target_compile_definitions(${name}_tests PRIVATE
-    STIFFSOFT_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
-    STIFFSOFT_SHARED_DIR="${PROJECT_SOURCE_DIR}/../shared"
-    STIFFSOFT_BINARY="$<TARGET_FILE:stiffsoft>")
-  gtest_discover_tests(${name}_tests DISCOVERY_TIMEOUT 60
-    PROPERTIES LABELS ${name})
+  set_property(GLOBAL APPEND PROPERTY STIFFSOFT_EXPORTED_TARGETS stiffsoft_${name})
 endfunction()

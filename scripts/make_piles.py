@@ -10,7 +10,7 @@ contact.dhat or its default 1e-3 × bounding-box diagonal.
     python3 scripts/make_piles.py            # writes scenes/*.json, prints triangle counts
     python3 scripts/make_piles.py --check    # only checks, writes nothing
 
-Triangle counts follow meshing/primitive.cpp: box and plane 12; UV sphere with n
+Triangle counts follow stiffsoft/meshing/primitive.cpp: box and plane 12; UV sphere with n
 segments: rings = max(2, n // 2), 2 n (rings − 1); cylinder with n segments: 4 n;
 torus with n segments: m = max(3, n // 2) around the tube, 2 n m.
 """

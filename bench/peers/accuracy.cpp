@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "meshing/intersection.hpp"
+#include <stiffsoft/meshing/intersection.hpp>
 #include "peers/ring_links.hpp"
 
 namespace stiffsoft::peers {

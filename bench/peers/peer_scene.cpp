@@ -4,10 +4,10 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "io/scene_builder.hpp"
-#include "io/scene_loader.hpp"
-#include "libabd/affine_body.hpp"
-#include "libabd/mass_matrix.hpp"
+#include <stiffsoft/scene/make_simulation.hpp>
+#include <stiffsoft/scene/scene_loader.hpp>
+#include <stiffsoft/libabd/affine_body.hpp>
+#include <stiffsoft/libabd/mass_matrix.hpp>
 #include "peers/ring_links.hpp"
 
 namespace stiffsoft::peers {
@@ -57,7 +57,7 @@ bool torus_slices_are_convex(const PeerBody& body) {
   const double tolerance = 1e-9 * body.x_bar.colwise().norm().maxCoeff();
   for (int j = 0; j < t.n; ++j) {
     const Eigen::MatrixX3d points = torus_slice(body, j);
-    // meshing/primitive.cpp writes slice j's quads (two triangles each) as faces [2jm, 2(j+1)m).
+    // stiffsoft/meshing/primitive.cpp writes slice j's quads (two triangles each) as faces [2jm, 2(j+1)m).
     for (int f = 2 * j * t.m; f < 2 * (j + 1) * t.m; ++f) {
       for (int corner = 0; corner < 3; ++corner) {
         const int ring = body.F(f, corner) / t.m;
@@ -86,8 +86,8 @@ PeerScene load_peer_scene(const std::filesystem::path& file, double dt) {
 
 PeerScene make_peer_scene(SceneDescription description, const std::filesystem::path& file, double dt) {
   description.time.dt = dt;
-  Model model = build_model(description, file);
-  resolve_relative_defaults(description, model);
+  auto [resolved, model, settings] = prepare_scene(description, file.string());
+  description = std::move(resolved);
 
   PeerScene scene;
   scene.name = description.name;
@@ -96,7 +96,7 @@ PeerScene make_peer_scene(SceneDescription description, const std::filesystem::p
   scene.gravity = description.gravity;
   scene.mu = description.contact.mu;
   scene.dhat = description.contact.dhat.value();
-  scene.settings = simulation_settings(description);
+  scene.settings = settings;
   scene.triangles = int(model.mesh.F.rows());
 
   double largest_footprint = 0;
@@ -132,7 +132,7 @@ PeerScene make_peer_scene(SceneDescription description, const std::filesystem::p
         b.torus = TorusFacets{p.resolution, std::max(3, p.resolution / 2), p.minor_radius};
         if (!torus_slices_are_convex(b))
           throw std::runtime_error(file.string() + ": body '" + b.name +
-                                   "': its torus slices are not convex (mesh layout differs from meshing/primitive.cpp?)");
+                                   "': its torus slices are not convex (mesh layout differs from stiffsoft/meshing/primitive.cpp?)");
         b.thickness = 2 * p.minor_radius * d.scale.minCoeff();
       }
     }

@@ -10,13 +10,13 @@
 #include <utility>
 #include <vector>
 
-#include "coupling/model.hpp"
-#include "coupling/simulation.hpp"
-#include "io/scene.hpp"
+#include <stiffsoft/coupling/model/model.hpp>
+#include <stiffsoft/coupling/solver/simulation.hpp>
+#include <stiffsoft/scene/scene.hpp>
 
 namespace stiffsoft::peers {
 
-/// The faceted torus of meshing/primitive.cpp: n rings of m vertices, vertex (j, k) at index j m + k.
+/// The faceted torus of stiffsoft/meshing/primitive.cpp: n rings of m vertices, vertex (j, k) at index j m + k.
 struct TorusFacets {
   int n = 0;         ///< segments around the centre line (rings)
   int m = 0;         ///< segments around the tube (vertices per ring)

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "libabd/affine_body.hpp"
+#include <stiffsoft/libabd/affine_body.hpp>
 
 namespace stiffsoft::peers {
 

@@ -3,7 +3,7 @@
 
 #include <optional>
 
-#include "coupling/simulation.hpp"
+#include <stiffsoft/coupling/solver/simulation.hpp>
 #include "peers/engine.hpp"
 #include "peers/peer_scene.hpp"
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "io/scene_loader.hpp"
+#include <stiffsoft/scene/scene_loader.hpp>
 
 namespace stiffsoft::peers {
 

@@ -1,4 +1,4 @@
-#include "libabd/mass_matrix.hpp"
+#include <stiffsoft/libabd/mass_matrix.hpp>
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "libabd/orthogonality_potential.hpp"
+#include <stiffsoft/libabd/orthogonality_potential.hpp>
 
 #include <gtest/gtest.h>
 

@@ -9,10 +9,10 @@
 #include <iomanip>
 #include <sstream>
 
-#include "libabd/affine_body.hpp"
-#include "libabd/orthogonality_potential.hpp"
-#include "coupling/joints/joint_measures.hpp"
-#include "io/joint_frame_reader.hpp"
+#include <stiffsoft/libabd/affine_body.hpp>
+#include <stiffsoft/libabd/orthogonality_potential.hpp>
+#include <stiffsoft/coupling/joints/joint_measures.hpp>
+#include <stiffsoft/io/joint_frame_reader.hpp>
 #include "scene_helpers.hpp"
 
 using namespace stiffsoft;

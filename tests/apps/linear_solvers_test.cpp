@@ -6,9 +6,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "coupling/linear_solver/petsc_arguments.hpp"
+#include "apps/cli/petsc_arguments.hpp"
 
-#include "io/frame_reader.hpp"
+#include <stiffsoft/scene/make_simulation.hpp>
+#include <stiffsoft//io/frame_reader.hpp>
 #include "scene_helpers.hpp"
 
 using namespace stiffsoft;
@@ -29,9 +30,8 @@ Trajectory trajectory(const std::string& scene_name, const std::string& backend,
   const fs::path file = fs::path(STIFFSOFT_SOURCE_DIR) / "scenes" / (scene_name + ".json");
   SceneDescription scene = load_scene(file);
   scene.solver.linear = backend;
-  Model model = build_model(scene, file);
-  resolve_relative_defaults(scene, model);
-  Simulation sim(std::move(model), simulation_settings(scene));
+  SceneSimulation run = make_simulation(scene, file.string());
+  Simulation& sim = run.simulation;
   Trajectory t;
   t.tolerance = sim.settings().tolerance;
   t.h = sim.settings().h;

@@ -27,10 +27,9 @@ struct InclineRun {
 
 /// Runs an incline scene; travel counts from `settle` seconds after the block's first contact.
 InclineRun run_incline(const std::string& file, double settle) {
-  SceneDescription scene = load_scene(file);
-  Model model = build_model(scene, file);
-  resolve_relative_defaults(scene, model);
-  Simulation sim(std::move(model), simulation_settings(scene));
+  SceneSimulation run = make_simulation(file);
+  const SceneDescription& scene = run.scene;
+  Simulation& sim = run.simulation;
   const double theta = std::atan(0.5);
   // The slab's rotation about z by −θ makes "down the slope" (−cos θ, −sin θ, 0) or its mirror;
   // take the direction whose y is negative.
@@ -81,11 +80,10 @@ TEST(Incline, SlidesAtMuPoint49WithTheAnalyticAcceleration) {
 // validation.md: a stack of boxes comes to rest, upright, each box on the one below.
 TEST(BoxStack, ComesToRestUprightAndStacked) {
   const std::string file = STIFFSOFT_SOURCE_DIR "/scenes/box_stack.json";
-  SceneDescription scene = load_scene(file);
-  Model model = build_model(scene, file);
-  resolve_relative_defaults(scene, model);
+  SceneSimulation run = make_simulation(file);
+  const SceneDescription& scene = run.scene;
   const double dhat = *scene.contact.dhat;
-  Simulation sim(std::move(model), simulation_settings(scene));
+  Simulation& sim = run.simulation;
   const int steps = int(std::lround(scene.time.duration / scene.time.dt));
   StepStats last;
   for (int k = 0; k < steps; ++k) {
@@ -117,10 +115,8 @@ TEST(BoxStack, ComesToRestUprightAndStacked) {
 TEST(Reproducibility, TwoRunsOfAPileAreIdentical) {
   const std::string file = STIFFSOFT_SOURCE_DIR "/scenes/light.json";
   const auto run = [&] {
-    SceneDescription scene = load_scene(file);
-    Model model = build_model(scene, file);
-    resolve_relative_defaults(scene, model);
-    Simulation sim(std::move(model), simulation_settings(scene));
+    SceneSimulation run = make_simulation(file);
+    Simulation& sim = run.simulation;
     for (int k = 0; k < 80; ++k) sim.step();  // past 60 steps: the piles are in contact
     return sim.q();
   };

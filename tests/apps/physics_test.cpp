@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "libabd/affine_body.hpp"
+#include <stiffsoft/libabd/affine_body.hpp>
 #include "scene_helpers.hpp"
 
 using namespace stiffsoft;

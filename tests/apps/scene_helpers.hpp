@@ -10,17 +10,15 @@
 #include <string>
 #include <vector>
 
-#include "io/scene_builder.hpp"
-#include "io/scene_loader.hpp"
+#include <stiffsoft/scene/make_simulation.hpp>
+#include <stiffsoft/scene/scene_loader.hpp>
 
 namespace stiffsoft::testing {
 
 /// A simulation of an inline JSON scene (relative defaults resolved as `stiffsoft run` does).
 inline Simulation simulate(const std::string& json, const std::string& name = "inline") {
-  SceneDescription scene = load_scene_from_string(json, STIFFSOFT_SOURCE_DIR, name + ".json", name);
-  Model model = build_model(scene, name + ".json");
-  resolve_relative_defaults(scene, model);
-  return Simulation(std::move(model), simulation_settings(scene));
+  PreparedScene p = prepare_scene(load_scene_from_string(json, STIFFSOFT_SOURCE_DIR, name + ".json", name), name + ".json");
+  return Simulation(std::move(p.model), p.settings);
 }
 
 /// A fresh empty folder under the system's temporary directory.

@@ -11,10 +11,8 @@ namespace {
 
 Simulation light_pile() {
   const std::string file = STIFFSOFT_SOURCE_DIR "/scenes/light.json";
-  SceneDescription scene = load_scene(file);
-  Model model = build_model(scene, file);
-  resolve_relative_defaults(scene, model);
-  return Simulation(std::move(model), simulation_settings(scene));
+  PreparedScene p = prepare_scene(file);
+  return Simulation(std::move(p.model), p.settings);
 }
 
 }  // namespace

@@ -7,8 +7,8 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "coupling/ccd/ccd.hpp"
-#include "coupling/ccd/distance.hpp"
+#include <stiffsoft/coupling/ccd/ccd.hpp>
+#include <stiffsoft/coupling/ccd/distance.hpp>
 
 namespace stiffsoft::ccd {
 namespace {

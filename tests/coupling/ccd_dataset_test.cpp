@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "coupling/ccd/query_file.hpp"
+#include <stiffsoft/coupling/ccd/query_file.hpp>
 
 namespace stiffsoft::ccd {
 namespace {

@@ -1,7 +1,7 @@
 // The CCD's private distances against closed forms, degenerate inputs included.
 #include <gtest/gtest.h>
 
-#include "coupling/ccd/distance.hpp"
+#include <stiffsoft/coupling/ccd/distance.hpp>
 
 namespace stiffsoft::ccd::detail {
 namespace {

@@ -7,10 +7,10 @@
 #include <cstdio>
 #include <random>
 
-#include "coupling/contact/barrier.hpp"
-#include "coupling/contact/barrier_potential.hpp"
-#include "coupling/contact/edge_edge_mollifier.hpp"
-#include "coupling/contact/psd_projection.hpp"
+#include <stiffsoft/coupling/contact/barrier.hpp>
+#include <stiffsoft/coupling/contact/barrier_potential.hpp>
+#include <stiffsoft/coupling/contact/edge_edge_mollifier.hpp>
+#include <stiffsoft/coupling/contact/psd_projection.hpp>
 #include "contact_stencils.hpp"
 #include "finite_differences.hpp"
 

@@ -7,7 +7,7 @@
 #include <map>
 #include <random>
 
-#include "coupling/contact/distance_classification.hpp"
+#include <stiffsoft/coupling/contact/distance_classification.hpp>
 
 namespace stiffsoft::contact {
 namespace {

@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "coupling/contact/squared_distance.hpp"
+#include <stiffsoft/coupling/contact/squared_distance.hpp>
 #include "finite_differences.hpp"
 
 namespace stiffsoft::contact {

@@ -8,7 +8,7 @@
 #include <limits>
 #include <random>
 
-#include "coupling/contact/friction.hpp"
+#include <stiffsoft/coupling/contact/friction.hpp>
 #include "contact_stencils.hpp"
 #include "finite_differences.hpp"
 

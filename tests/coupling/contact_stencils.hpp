@@ -4,7 +4,7 @@
 #include <Eigen/Core>
 #include <random>
 
-#include "coupling/contact/primitive_pair.hpp"
+#include <stiffsoft/coupling/contact/primitive_pair.hpp>
 
 namespace stiffsoft::contact::test_stencils {
 

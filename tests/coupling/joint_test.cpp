@@ -8,13 +8,13 @@
 #include <cmath>
 #include <random>
 
-#include "coupling/joints/joint_measures.hpp"
-#include "coupling/joints/linear_constraints.hpp"
-#include "coupling/joints/reduced_basis.hpp"
-#include "coupling/terms/damping_term.hpp"
-#include "coupling/terms/joint_term.hpp"
+#include <stiffsoft/coupling/joints/joint_measures.hpp>
+#include <stiffsoft/coupling/joints/linear_constraints.hpp>
+#include <stiffsoft/coupling/joints/reduced_basis.hpp>
+#include <stiffsoft/coupling/terms/damping_term.hpp>
+#include <stiffsoft/coupling/terms/joint_term.hpp>
 #include "finite_differences.hpp"
-#include "libabd/affine_body.hpp"
+#include <stiffsoft/libabd/affine_body.hpp>
 
 using namespace stiffsoft;
 using namespace stiffsoft::testing;

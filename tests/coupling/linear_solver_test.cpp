@@ -16,15 +16,15 @@
 #include <random>
 #include <set>
 
-#include "coupling/linear_solver/auto_solver.hpp"
-#include "coupling/linear_solver/block_jacobi.hpp"
-#include "coupling/linear_solver/block_sparse_pattern.hpp"
-#include "coupling/linear_solver/cholmod_solver.hpp"
-#include "coupling/linear_solver/forcing_term.hpp"
-#include "coupling/linear_solver/linear_system_io.hpp"
-#include "coupling/linear_solver/petsc_arguments.hpp"
-#include "coupling/linear_solver/petsc_session.hpp"
-#include "coupling/linear_solver/petsc_solver.hpp"
+#include <stiffsoft/coupling/linear_solver/auto_solver.hpp>
+#include <stiffsoft/coupling/linear_solver/block_jacobi.hpp>
+#include <stiffsoft/coupling/linear_solver/block_sparse_pattern.hpp>
+#include <stiffsoft/coupling/linear_solver/cholmod_solver.hpp>
+#include <stiffsoft/coupling/linear_solver/forcing_term.hpp>
+#include <stiffsoft/coupling/linear_solver/linear_system_io.hpp>
+#include "apps/cli/petsc_arguments.hpp"
+#include <stiffsoft/coupling/linear_solver/petsc_session.hpp>
+#include <stiffsoft/coupling/linear_solver/petsc_solver.hpp>
 
 extern char** environ;
 
@@ -488,25 +488,6 @@ TEST(PetscSolver, TheOptionsDatabaseOverridesTheNamedMethod) {
   EXPECT_DOUBLE_EQ(solver.last_report().requested_tolerance, 1e-3);
   EXPECT_LE(relative_residual(s, p), 1e-3);
   EXPECT_EQ(PetscSolver().name(), "petsc:cg:icc");  // options cleared: the defaults again
-}
-
-TEST(SplitPetscArguments, PetscOptionsGoToPetscAndTheRestToTheProgram) {
-  const char* argv[] = {"stiffsoft",    "run",           "scene.json", "-ksp_type",   "cg",        "-o",
-                        "out",          "-log_view",     "--steps",    "3",           "-ksp_rtol", "-1e-3",
-                        "-ksp_monitor", "-pc_type",      "gamg",       "-help_petsc", "--threads", "2",
-                        "-ksp_view",    "ascii:view.txt"};
-  const SplitCommandLine split = split_petsc_arguments(int(std::size(argv)), argv);
-  EXPECT_EQ(split.program, (std::vector<std::string>{"stiffsoft", "run", "scene.json", "-o", "out", "--steps",
-                                                     "3", "--threads", "2"}));
-  EXPECT_EQ(split.petsc, (std::vector<std::string>{"stiffsoft", "-ksp_type", "cg", "-log_view", "-ksp_rtol",
-                                                   "-1e-3", "-ksp_monitor", "-pc_type", "gamg", "-help",
-                                                   "-ksp_view", "ascii:view.txt"}));
-  const char* flag_first[] = {"stiffsoft", "-log_view", "run", "scene.json"};
-  EXPECT_EQ(split_petsc_arguments(4, flag_first).program,
-            (std::vector<std::string>{"stiffsoft", "run", "scene.json"}));
-  EXPECT_FALSE(is_petsc_option("--ksp_type"));
-  EXPECT_FALSE(is_petsc_option("-o"));
-  EXPECT_TRUE(is_petsc_option("-pc_gamg_threshold"));
 }
 
 TEST(ForcingTerm, FollowsEisenstatWalkerChoiceTwoWithItsSafeguards) {

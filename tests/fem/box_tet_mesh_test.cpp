@@ -1,4 +1,4 @@
-#include "libfem/box_tet_mesh.hpp"
+#include <stiffsoft/libfem/box_tet_mesh.hpp>
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "libfem/elastic_energy.hpp"
+#include <stiffsoft/libfem/elastic_energy.hpp>
 
 #include <gtest/gtest.h>
 
@@ -6,8 +6,8 @@
 #include <string>
 
 #include "finite_differences.hpp"
-#include "libfem/box_tet_mesh.hpp"
-#include "libfem/make_material.hpp"
+#include <stiffsoft/libfem/box_tet_mesh.hpp>
+#include <stiffsoft/libfem/make_material.hpp>
 
 using namespace stiffsoft::fem;
 using stiffsoft::testing::fd_gradient;

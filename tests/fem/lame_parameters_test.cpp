@@ -1,11 +1,11 @@
-#include "libfem/lame_parameters.hpp"
+#include <stiffsoft/libfem/lame_parameters.hpp>
 
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "libfem/make_material.hpp"
-#include "libfem/stable_neo_hookean.hpp"
+#include <stiffsoft/libfem/make_material.hpp>
+#include <stiffsoft/libfem/stable_neo_hookean.hpp>
 
 using namespace stiffsoft::fem;
 

@@ -1,10 +1,10 @@
-#include "libfem/lumped_mass.hpp"
+#include <stiffsoft/libfem/lumped_mass.hpp>
 
 #include <gtest/gtest.h>
 
 #include <random>
 
-#include "libfem/box_tet_mesh.hpp"
+#include <stiffsoft/libfem/box_tet_mesh.hpp>
 
 using namespace stiffsoft::fem;
 

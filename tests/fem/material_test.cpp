@@ -8,7 +8,7 @@
 #include <string>
 
 #include "finite_differences.hpp"
-#include "libfem/make_material.hpp"
+#include <stiffsoft/libfem/make_material.hpp>
 
 using namespace stiffsoft::fem;
 using stiffsoft::testing::fd_gradient;

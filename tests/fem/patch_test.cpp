@@ -4,10 +4,10 @@
 
 #include <random>
 
-#include "libfem/box_tet_mesh.hpp"
-#include "libfem/elastic_energy.hpp"
-#include "libfem/make_material.hpp"
-#include "libfem/solve_static.hpp"
+#include <stiffsoft/libfem/box_tet_mesh.hpp>
+#include <stiffsoft/libfem/elastic_energy.hpp>
+#include <stiffsoft/libfem/make_material.hpp>
+#include <stiffsoft/libfem/solve_static.hpp>
 
 using namespace stiffsoft::fem;
 

@@ -1,9 +1,9 @@
-#include "libfem/solve_static.hpp"
+#include <stiffsoft/libfem/solve_static.hpp>
 
 #include <gtest/gtest.h>
 
-#include "libfem/box_tet_mesh.hpp"
-#include "libfem/make_material.hpp"
+#include <stiffsoft/libfem/box_tet_mesh.hpp>
+#include <stiffsoft/libfem/make_material.hpp>
 
 using namespace stiffsoft::fem;
 

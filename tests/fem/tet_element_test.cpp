@@ -1,4 +1,4 @@
-#include "libfem/tet_element.hpp"
+#include <stiffsoft/libfem/tet_element.hpp>
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <string>
 
 #include "finite_differences.hpp"
-#include "libfem/make_material.hpp"
+#include <stiffsoft/libfem/make_material.hpp>
 
 using namespace stiffsoft::fem;
 using stiffsoft::testing::fd_gradient;

@@ -1,4 +1,4 @@
-#include "io/atomic_file.hpp"
+#include <stiffsoft/io/atomic_file.hpp>
 
 #include <gtest/gtest.h>
 #include <unistd.h>

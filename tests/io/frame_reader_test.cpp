@@ -1,4 +1,4 @@
-#include "io/frame_reader.hpp"
+#include <stiffsoft/io/frame_reader.hpp>
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -6,7 +6,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "io/frame_writer.hpp"
+#include <stiffsoft/io/frame_writer.hpp>
 
 namespace stiffsoft {
 namespace {

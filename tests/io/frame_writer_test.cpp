@@ -1,4 +1,4 @@
-#include "io/frame_writer.hpp"
+#include <stiffsoft/io/frame_writer.hpp>
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -7,7 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "io/frame_reader.hpp"
+#include <stiffsoft/io/frame_reader.hpp>
 
 namespace stiffsoft {
 namespace {

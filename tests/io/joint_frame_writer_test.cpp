@@ -8,8 +8,8 @@
 #include <random>
 #include <sstream>
 
-#include "io/joint_frame_reader.hpp"
-#include "io/joint_frame_writer.hpp"
+#include <stiffsoft/io/joint_frame_reader.hpp>
+#include <stiffsoft/io/joint_frame_writer.hpp>
 
 using namespace stiffsoft;
 

@@ -1,4 +1,4 @@
-#include "io/stats_writer.hpp"
+#include <stiffsoft/io/stats_writer.hpp>
 
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -1,8 +1,8 @@
-#include "meshing/intersection.hpp"
+#include <stiffsoft/meshing/intersection.hpp>
 
 #include <gtest/gtest.h>
 
-#include "meshing/primitive.hpp"
+#include <stiffsoft/meshing/primitive.hpp>
 
 namespace stiffsoft {
 namespace {

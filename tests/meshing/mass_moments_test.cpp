@@ -1,4 +1,4 @@
-#include "meshing/mass_moments.hpp"
+#include <stiffsoft/meshing/mass_moments.hpp>
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "meshing/primitive.hpp"
+#include <stiffsoft/meshing/primitive.hpp>
 
 namespace stiffsoft {
 namespace {

@@ -1,11 +1,11 @@
-#include "meshing/mesh_checks.hpp"
+#include <stiffsoft/meshing/mesh_checks.hpp>
 
 #include <gtest/gtest.h>
 
 #include <stdexcept>
 #include <string>
 
-#include "meshing/primitive.hpp"
+#include <stiffsoft/meshing/primitive.hpp>
 
 namespace stiffsoft {
 namespace {

@@ -1,4 +1,4 @@
-#include "meshing/primitive.hpp"
+#include <stiffsoft/meshing/primitive.hpp>
 
 #include <gtest/gtest.h>
 
@@ -6,8 +6,8 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "meshing/mass_moments.hpp"
-#include "meshing/mesh_checks.hpp"
+#include <stiffsoft/meshing/mass_moments.hpp>
+#include <stiffsoft/meshing/mesh_checks.hpp>
 
 namespace stiffsoft {
 namespace {

@@ -1,4 +1,4 @@
-#include "meshing/read_surface_mesh.hpp"
+#include <stiffsoft/meshing/read_surface_mesh.hpp>
 
 #include <gtest/gtest.h>
 
@@ -10,9 +10,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "meshing/mass_moments.hpp"
-#include "meshing/mesh_checks.hpp"
-#include "meshing/primitive.hpp"
+#include <stiffsoft/meshing/mass_moments.hpp>
+#include <stiffsoft/meshing/mesh_checks.hpp>
+#include <stiffsoft/meshing/primitive.hpp>
 
 namespace stiffsoft {
 namespace {

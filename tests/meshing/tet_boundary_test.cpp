@@ -1,4 +1,4 @@
-#include "meshing/tet_boundary.hpp"
+#include <stiffsoft/meshing/tet_boundary.hpp>
 
 #include <gtest/gtest.h>
 
@@ -6,8 +6,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "meshing/mass_moments.hpp"
-#include "meshing/mesh_checks.hpp"
+#include <stiffsoft/meshing/mass_moments.hpp>
+#include <stiffsoft/meshing/mesh_checks.hpp>
 
 namespace stiffsoft {
 namespace {

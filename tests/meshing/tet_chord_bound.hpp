@@ -4,7 +4,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 
-#include "meshing/surface_mesh.hpp"
+#include <stiffsoft/meshing/surface_mesh.hpp>
 
 namespace stiffsoft {
 

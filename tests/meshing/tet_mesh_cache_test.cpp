@@ -1,4 +1,4 @@
-#include "meshing/tet_mesh_cache.hpp"
+#include <stiffsoft/meshing/tet_mesh_cache.hpp>
 
 #include <gtest/gtest.h>
 #include <stdlib.h>
@@ -8,8 +8,8 @@
 #include <fstream>
 #include <string>
 
-#include "meshing/gmsh_session.hpp"
-#include "meshing/tet_mesh_binary.hpp"
+#include <stiffsoft/meshing/gmsh_session.hpp>
+#include <stiffsoft/meshing/tet_mesh_binary.hpp>
 
 namespace stiffsoft {
 namespace {

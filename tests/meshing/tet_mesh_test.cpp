@@ -1,4 +1,4 @@
-#include "meshing/tet_mesh.hpp"
+#include <stiffsoft/meshing/tet_mesh.hpp>
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "meshing/tet_meshing.hpp"
+#include <stiffsoft/meshing/tet_meshing.hpp>
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -13,11 +13,11 @@
 #include <string>
 #include <thread>
 
-#include "meshing/gmsh_session.hpp"
-#include "meshing/mass_moments.hpp"
-#include "meshing/mesh_checks.hpp"
-#include "meshing/tet_boundary.hpp"
-#include "meshing/tet_quality.hpp"
+#include <stiffsoft/meshing/gmsh_session.hpp>
+#include <stiffsoft/meshing/mass_moments.hpp>
+#include <stiffsoft/meshing/mesh_checks.hpp>
+#include <stiffsoft/meshing/tet_boundary.hpp>
+#include <stiffsoft/meshing/tet_quality.hpp>
 #include "tet_chord_bound.hpp"
 
 namespace stiffsoft {

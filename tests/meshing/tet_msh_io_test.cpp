@@ -1,4 +1,4 @@
-#include "meshing/tet_msh_io.hpp"
+#include <stiffsoft/meshing/tet_msh_io.hpp>
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "meshing/tet_meshing.hpp"
+#include <stiffsoft/meshing/tet_meshing.hpp>
 
 namespace stiffsoft {
 namespace {

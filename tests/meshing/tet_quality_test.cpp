@@ -1,4 +1,4 @@
-#include "meshing/tet_quality.hpp"
+#include <stiffsoft/meshing/tet_quality.hpp>
 
 #include <gtest/gtest.h>
 

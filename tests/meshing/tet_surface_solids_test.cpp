@@ -1,4 +1,4 @@
-#include "meshing/tet_surface_solids.hpp"
+#include <stiffsoft/meshing/tet_surface_solids.hpp>
 
 #include <gtest/gtest.h>
 
@@ -8,11 +8,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "meshing/mass_moments.hpp"
-#include "meshing/mesh_checks.hpp"
-#include "meshing/primitive.hpp"
-#include "meshing/tet_boundary.hpp"
-#include "meshing/tet_meshing.hpp"
+#include <stiffsoft/meshing/mass_moments.hpp>
+#include <stiffsoft/meshing/mesh_checks.hpp>
+#include <stiffsoft/meshing/primitive.hpp>
+#include <stiffsoft/meshing/tet_boundary.hpp>
+#include <stiffsoft/meshing/tet_meshing.hpp>
 #include "tet_chord_bound.hpp"
 
 namespace stiffsoft {

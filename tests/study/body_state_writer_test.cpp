@@ -1,4 +1,4 @@
-/// @file bodies.csv (io/body_state_writer.hpp): the per-body state a study reads, checked on
+/// @file bodies.csv (stiffsoft/io/body_state_writer.hpp): the per-body state a study reads, checked on
 /// a spinning free box whose state is known in closed form.
 
 #include <gtest/gtest.h>
@@ -9,9 +9,9 @@
 #include <random>
 #include <sstream>
 
-#include "io/body_state_writer.hpp"
-#include "io/scene_builder.hpp"
-#include "io/scene_loader.hpp"
+#include <stiffsoft/io/body_state_writer.hpp>
+#include <stiffsoft/scene/make_simulation.hpp>
+#include <stiffsoft/scene/scene_loader.hpp>
 
 using namespace stiffsoft;
 
@@ -44,10 +44,8 @@ TEST(BodyStateWriter, WritesPositionRotationVelocitiesAndEnergy) {
                 "position": [0, -2, 0]},
                {"name": "box", "mesh": {"primitive": "box", "size": [1, 0.5, 0.1]}, "kappa": 1e10,
                 "velocity": [0.3, 0, 0], "angular_velocity": [0, 0, 2]}]})";
-  SceneDescription scene = load_scene_from_string(json, STIFFSOFT_SOURCE_DIR, "spin.json", "spin");
-  Model model = build_model(scene, "spin.json");
-  resolve_relative_defaults(scene, model);
-  Simulation sim(std::move(model), simulation_settings(scene));
+  SceneSimulation run = make_simulation(load_scene_from_string(json, STIFFSOFT_SOURCE_DIR, "spin.json", "spin"), "spin.json");
+  Simulation& sim = run.simulation;
   std::random_device rd;
   const auto dir = std::filesystem::temp_directory_path() / ("bodies_csv_" + std::to_string(rd()));
   std::filesystem::create_directories(dir);

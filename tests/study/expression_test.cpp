@@ -1,12 +1,12 @@
-/// @file The analytic-reference expression language (study/expression.hpp).
+/// @file The analytic-reference expression language (stiffsoft/study/expression.hpp).
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "study/builtin_references.hpp"
-#include "study/expression.hpp"
+#include <stiffsoft/study/builtin_references.hpp>
+#include <stiffsoft/study/expression.hpp>
 
 using stiffsoft::study::evaluate;
 

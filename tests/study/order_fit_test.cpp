@@ -1,10 +1,10 @@
-/// @file Observed orders and Richardson extrapolation (study/order_fit.hpp).
+/// @file Observed orders and Richardson extrapolation (stiffsoft/study/order_fit.hpp).
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "study/order_fit.hpp"
+#include <stiffsoft/study/order_fit.hpp>
 
 using namespace stiffsoft::study;
 

@@ -1,5 +1,5 @@
 /// @file Study files: bad input is refused with the file and the JSON path; the sweep expands
-/// to validated scenes identified by hash (study/study_spec.hpp, study/sweep.hpp).
+/// to validated scenes identified by hash (stiffsoft/study/study_spec.hpp, stiffsoft/study/sweep.hpp).
 
 #include <gtest/gtest.h>
 
@@ -8,8 +8,8 @@
 #include <random>
 #include <set>
 
-#include "study/study_spec.hpp"
-#include "study/sweep.hpp"
+#include <stiffsoft/study/study_spec.hpp>
+#include <stiffsoft/study/sweep.hpp>
 
 using namespace stiffsoft::study;
 

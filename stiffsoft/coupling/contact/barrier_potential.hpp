@@ -1,0 +1,124 @@
+#pragma once
+/// @file The barrier potential of one contact stencil: P(x) = m(x) · b(d²(x), d̂), with the
+/// edge–edge mollifier m only on mollified EdgeEdge stencils (IPC, Li et al. 2020, eqs. 6, 13).
+
+#include <Eigen/Core>
+
+#include <stiffsoft/coupling/contact/barrier.hpp>
+#include <stiffsoft/coupling/contact/distance_classification.hpp>
+#include <stiffsoft/coupling/contact/edge_edge_mollifier.hpp>
+#include <stiffsoft/coupling/contact/primitive_pair.hpp>
+#include <stiffsoft/coupling/contact/psd_projection.hpp>
+#include <stiffsoft/coupling/contact/squared_distance.hpp>
+
+namespace stiffsoft::contact {
+
+/// One contact stencil as the barrier sees it.
+///
+/// Mollified nearly parallel edges: IPC keeps an edge–edge candidate whose
+/// ‖ea × eb‖² < ε_x as an EdgeEdge stencil with the mollifier even when its distance type is
+/// degenerate (ipc-toolkit, Collisions::build). For such stencils set `segment_distance`:
+/// d² is then the TRUE segment–segment squared distance, obtained by classifying the four
+/// vertices on every call (classify_edge_edge) and evaluating the classified sub-pair
+/// (VV / EV / EE) on the matching vertices; its gradient and Hessian are those of the
+/// sub-pair scattered to the 12 coordinates (piecewise smooth, C¹ across type switches,
+/// the Hessian jumps there exactly as in IPC). With `segment_distance = false` an EdgeEdge
+/// stencil uses the line–line distance.
+struct Stencil {
+  /// primitive pair; vertices packed as documented on PrimitivePair
+  PrimitivePair kind = PrimitivePair::VertexVertex;
+  /// mollifier threshold ε_x, m⁴ (edge_edge_mollifier_threshold); ≤ 0: no mollifier. EdgeEdge only.
+  double eps_x = 0;
+  /// EdgeEdge only: use the exact segment–segment distance (classified inside) instead of the
+  /// line–line distance; meant for mollified stencils whose type is not EA_EB.
+  bool segment_distance = false;
+};
+
+/// Whether the stencil carries the edge–edge mollifier.
+inline bool is_mollified(const Stencil& s) { return s.kind == PrimitivePair::EdgeEdge && s.eps_x > 0.0; }
+
+/// Whether d² is the classified segment–segment distance.
+inline bool uses_segment_distance(const Stencil& s) {
+  return s.kind == PrimitivePair::EdgeEdge && s.segment_distance;
+}
+
+/// Classification of an EdgeEdge stencil [ea0; ea1; eb0; eb1].
+inline Classified classify_edge_edge_stencil(const Vector12d& x) {
+  return classify_edge_edge(x.segment<3>(0), x.segment<3>(3), x.segment<3>(6), x.segment<3>(9));
+}
+
+/// Squared distance d² of the stencil, m²: squared_distance(kind, x), or the classified
+/// segment–segment distance when uses_segment_distance(s).
+inline double stencil_squared_distance(const Stencil& s, const Vector12d& x) {
+  if (!uses_segment_distance(s)) return squared_distance(s.kind, x);
+  const Classified c = classify_edge_edge_stencil(x);
+  return squared_distance(c.kind, gather_classified(c, x));
+}
+
+/// ∇_x d² of the stencil, 12-vector, metres.
+inline Vector12d stencil_squared_distance_gradient(const Stencil& s, const Vector12d& x) {
+  if (!uses_segment_distance(s)) return squared_distance_gradient(s.kind, x);
+  const Classified c = classify_edge_edge_stencil(x);
+  return scatter_classified(c, squared_distance_gradient(c.kind, gather_classified(c, x)));
+}
+
+/// ∇²_x d² of the stencil, 12×12, dimensionless.
+inline Matrix12d stencil_squared_distance_hessian(const Stencil& s, const Vector12d& x) {
+  if (!uses_segment_distance(s)) return squared_distance_hessian(s.kind, x);
+  const Classified c = classify_edge_edge_stencil(x);
+  return scatter_classified(c, squared_distance_hessian(c.kind, gather_classified(c, x)));
+}
+
+/// Closest points of the stencil (weights over the stencil's 4 vertices, residual r, and the
+/// parameters of the used pair), classified for segment-distance stencils.
+inline ClosestPoints stencil_closest_points(const Stencil& s, const Vector12d& x) {
+  if (!uses_segment_distance(s)) return closest_points(s.kind, x);
+  const Classified c = classify_edge_edge_stencil(x);
+  ClosestPoints sub = closest_points(c.kind, gather_classified(c, x));
+  ClosestPoints out = sub;
+  out.weights.setZero();
+  for (int i = 0; i < vertex_count(c.kind); ++i) out.weights[c.local[i]] += sub.weights[i];
+  return out;
+}
+
+/// Barrier potential P(x) = m(x) b(d²(x), d̂) of one stencil (m ≡ 1 unless mollified), m⁴;
+/// multiply by κ for an energy. x: packed stencil, m; dhat: d̂, m.
+inline double barrier_potential(const Stencil& s, const Vector12d& x, double dhat) {
+  const double d2 = stencil_squared_distance(s, x);
+  if (d2 >= dhat * dhat) return 0.0;
+  const double b = barrier(d2, dhat);
+  return is_mollified(s) ? edge_edge_mollifier(x, s.eps_x) * b : b;
+}
+
+/// ∇P = m b'(d²) ∇d² + b ∇m, 12-vector, m³.
+inline Vector12d barrier_potential_gradient(const Stencil& s, const Vector12d& x, double dhat) {
+  const double d2 = stencil_squared_distance(s, x);
+  if (d2 >= dhat * dhat) return Vector12d::Zero();
+  const Vector12d grad_d2 = stencil_squared_distance_gradient(s, x);
+  const double db = barrier_first_derivative(d2, dhat);
+  if (!is_mollified(s)) return db * grad_d2;
+  return edge_edge_mollifier(x, s.eps_x) * db * grad_d2 +
+         barrier(d2, dhat) * edge_edge_mollifier_gradient(x, s.eps_x);
+}
+
+/// ∇²P = m (b'' ∇d² ∇d²ᵀ + b' ∇²d²) + b' (∇m ∇d²ᵀ + ∇d² ∇mᵀ) + b ∇²m, 12×12, m².
+/// project_psd: clamp the negative eigenvalues of the active (3·vertex_count)² block to 0.
+inline Matrix12d barrier_potential_hessian(const Stencil& s, const Vector12d& x, double dhat,
+                                           bool project_psd) {
+  const double d2 = stencil_squared_distance(s, x);
+  if (d2 >= dhat * dhat) return Matrix12d::Zero();
+  const Vector12d grad_d2 = stencil_squared_distance_gradient(s, x);
+  const double db = barrier_first_derivative(d2, dhat);
+  const double ddb = barrier_second_derivative(d2, dhat);
+  Matrix12d H = ddb * grad_d2 * grad_d2.transpose() + db * stencil_squared_distance_hessian(s, x);
+  if (is_mollified(s)) {
+    const double m = edge_edge_mollifier(x, s.eps_x);
+    const Vector12d grad_m = edge_edge_mollifier_gradient(x, s.eps_x);
+    H = m * H + db * (grad_m * grad_d2.transpose() + grad_d2 * grad_m.transpose()) +
+        barrier(d2, dhat) * edge_edge_mollifier_hessian(x, s.eps_x);
+  }
+  if (project_psd) project_leading_block_to_psd(H, vertex_count(s.kind));
+  return H;
+}
+
+}  // namespace stiffsoft::contact

@@ -1,0 +1,26 @@
+#pragma once
+/// @file Broad phase: body pairs first (the seed's i-AABB culling: boxes of the transformed
+/// bodies), then primitive pairs inside each overlapping body pair by sort-and-sweep.
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include <stiffsoft/coupling/model/model.hpp>
+
+namespace stiffsoft {
+
+/// Primitive pairs whose boxes overlap: between two different bodies, at least one of which
+/// carries DOFs, or inside one soft body (self-contact) when they share no vertex.
+struct Candidates {
+  std::vector<std::array<int, 2>> vertex_face;  ///< (vertex, face)
+  std::vector<std::array<int, 2>> edge_edge;    ///< (edge, edge), first < second
+};
+
+/// Candidates for the motion of every surface vertex on the segment x0 → x1 (|V|×3 each, m):
+/// a vertex's box spans both ends, grown by `inflation` (m) on every side. For proximity
+/// (x1 = x0) an inflation of d̂/2 finds every pair closer than d̂.
+Candidates broad_phase(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
+                       double inflation);
+
+}  // namespace stiffsoft

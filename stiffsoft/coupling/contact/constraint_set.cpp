@@ -1,0 +1,129 @@
+#include <stiffsoft/coupling/contact/constraint_set.hpp>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace stiffsoft {
+
+using contact::PrimitivePair;
+
+contact::Vector12d gather(const Eigen::MatrixX3d& x, const std::array<int, 4>& vertices) {
+  contact::Vector12d out = contact::Vector12d::Zero();
+  for (int i = 0; i < 4; ++i)
+    if (vertices[i] >= 0) out.segment<3>(3 * i) = x.row(vertices[i]).transpose();
+  return out;
+}
+
+namespace {
+
+/// Canonical vertex order so that the same physical pair found from different candidates
+/// compares equal: VV sorted, EV with its edge sorted, EE with each edge sorted and the
+/// edges ordered, FV as the face stores it.
+ContactConstraint canonical(PrimitivePair kind, std::array<int, 4> v, double eps_x, bool segment) {
+  switch (kind) {
+    case PrimitivePair::VertexVertex:
+      if (v[0] > v[1]) std::swap(v[0], v[1]);
+      v[2] = v[3] = -1;
+      break;
+    case PrimitivePair::EdgeVertex:
+      if (v[1] > v[2]) std::swap(v[1], v[2]);
+      v[3] = -1;
+      break;
+    case PrimitivePair::EdgeEdge:
+      if (v[0] > v[1]) std::swap(v[0], v[1]);
+      if (v[2] > v[3]) std::swap(v[2], v[3]);
+      if (std::make_pair(v[0], v[1]) > std::make_pair(v[2], v[3])) {
+        std::swap(v[0], v[2]);
+        std::swap(v[1], v[3]);
+      }
+      break;
+    case PrimitivePair::FaceVertex: break;
+  }
+  ContactConstraint c;
+  c.stencil.kind = kind;
+  c.stencil.eps_x = kind == PrimitivePair::EdgeEdge ? eps_x : 0.0;
+  c.stencil.segment_distance = segment;
+  c.vertices = v;
+  return c;
+}
+
+std::array<int, 4> pick(const std::array<int, 4>& candidate, const contact::Classified& c) {
+  std::array<int, 4> v{-1, -1, -1, -1};
+  for (int i = 0; i < 4; ++i)
+    if (c.local[i] >= 0) v[i] = candidate[c.local[i]];
+  return v;
+}
+
+bool less(const ContactConstraint& a, const ContactConstraint& b) {
+  if (a.stencil.kind != b.stencil.kind) return a.stencil.kind < b.stencil.kind;
+  return a.vertices < b.vertices;
+}
+
+}  // namespace
+
+std::vector<ContactConstraint> build_constraints(const Model& model, const Eigen::MatrixX3d& x,
+                                                 const Candidates& candidates, double dhat) {
+  const CollisionMesh& mesh = model.mesh;
+  const double dhat2 = dhat * dhat;
+  tbb::enumerable_thread_specific<std::vector<ContactConstraint>> local;
+
+  tbb::parallel_for(size_t(0), candidates.vertex_face.size(), [&](size_t k) {
+    const auto [v, f] = candidates.vertex_face[k];
+    const std::array<int, 4> ids{v, mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)};
+    const contact::Vector12d xs = gather(x, ids);
+    const contact::Classified c = contact::classify_point_triangle(
+        xs.segment<3>(0), xs.segment<3>(3), xs.segment<3>(6), xs.segment<3>(9));
+    const double d2 = contact::squared_distance(c.kind, contact::gather_classified(c, xs));
+    if (d2 < dhat2) local.local().push_back(canonical(c.kind, pick(ids, c), 0.0, false));
+  });
+
+  tbb::parallel_for(size_t(0), candidates.edge_edge.size(), [&](size_t k) {
+    const auto [ea, eb] = candidates.edge_edge[k];
+    const std::array<int, 4> ids{mesh.E(ea, 0), mesh.E(ea, 1), mesh.E(eb, 0), mesh.E(eb, 1)};
+    const contact::Vector12d xs = gather(x, ids);
+    const contact::Classified c = contact::classify_edge_edge_stencil(xs);
+    const double d2 = contact::squared_distance(c.kind, contact::gather_classified(c, xs));
+    if (d2 >= dhat2) return;
+    // Rest edge lengths are those of the body frame: affine bodies stay (nearly) rigid.
+    const double eps_x = contact::edge_edge_mollifier_threshold(
+        mesh.x_bar.row(ids[0]).transpose(), mesh.x_bar.row(ids[1]).transpose(),
+        mesh.x_bar.row(ids[2]).transpose(), mesh.x_bar.row(ids[3]).transpose());
+    if (contact::edge_edge_cross_squared_norm(xs) < eps_x)
+      local.local().push_back(canonical(PrimitivePair::EdgeEdge, ids, eps_x, true));
+    else
+      local.local().push_back(canonical(c.kind, pick(ids, c), eps_x, false));
+  });
+
+  std::vector<ContactConstraint> all;
+  for (const auto& l : local) all.insert(all.end(), l.begin(), l.end());
+  std::sort(all.begin(), all.end(), less);
+  std::vector<ContactConstraint> merged;
+  for (const ContactConstraint& c : all) {
+    if (!merged.empty() && !less(merged.back(), c)) {
+      merged.back().weight += c.weight;
+      continue;
+    }
+    merged.push_back(c);
+  }
+  return merged;
+}
+
+double smallest_distance(const Model& model, const Eigen::MatrixX3d& x, const Candidates& candidates) {
+  const CollisionMesh& mesh = model.mesh;
+  double d2 = std::numeric_limits<double>::infinity();
+  for (const auto& [v, f] : candidates.vertex_face)
+    d2 = std::min(d2, contact::point_triangle_squared_distance(
+                          x.row(v).transpose(), x.row(mesh.F(f, 0)).transpose(),
+                          x.row(mesh.F(f, 1)).transpose(), x.row(mesh.F(f, 2)).transpose()));
+  for (const auto& [ea, eb] : candidates.edge_edge)
+    d2 = std::min(d2, contact::segment_segment_squared_distance(
+                          x.row(mesh.E(ea, 0)).transpose(), x.row(mesh.E(ea, 1)).transpose(),
+                          x.row(mesh.E(eb, 0)).transpose(), x.row(mesh.E(eb, 1)).transpose()));
+  return std::sqrt(d2);
+}
+
+}  // namespace stiffsoft

@@ -1,0 +1,40 @@
+#pragma once
+/// @file The active contact set: primitive pairs closer than d̂, classified into IPC's
+/// vertex–vertex / edge–vertex / edge–edge / face–vertex stencils. Candidates that classify
+/// to the same stencil are merged and counted: the barrier is Σ over point–triangle and
+/// edge–edge candidates (IPC, Li et al. 2020, eq. 4), so a merged stencil carries its
+/// multiplicity as a weight. Dropping the count instead would make the energy jump whenever a
+/// vertex crosses between Voronoi regions (the candidates of the faces around a corner
+/// classify it as vertex–vertex or edge–vertex on either side), and Newton stalls there.
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include <stiffsoft/coupling/contact/broad_phase.hpp>
+#include <stiffsoft/coupling/contact/barrier_potential.hpp>
+#include <stiffsoft/coupling/model/model.hpp>
+
+namespace stiffsoft {
+
+/// One active contact: the stencil's kind, its global surface vertices (−1 where unused) and
+/// its multiplicity (how many candidates classified to it).
+struct ContactConstraint {
+  contact::Stencil stencil;
+  std::array<int, 4> vertices{-1, -1, -1, -1};
+  double weight = 1;  ///< multiplicity, ≥ 1
+};
+
+/// The stencil's vertex positions packed [x_0; x_1; x_2; x_3] (unused entries zero), m.
+contact::Vector12d gather(const Eigen::MatrixX3d& x, const std::array<int, 4>& vertices);
+
+/// Contacts among the candidates whose distance at x is below d̂ (m). Nearly parallel edge
+/// pairs (‖ea × eb‖² < ε_x) stay edge–edge with the mollifier and the true segment distance.
+std::vector<ContactConstraint> build_constraints(const Model& model, const Eigen::MatrixX3d& x,
+                                                 const Candidates& candidates, double dhat);
+
+/// Smallest distance (m) between any two primitives of different bodies among the candidates,
+/// or +∞ when there are none.
+double smallest_distance(const Model& model, const Eigen::MatrixX3d& x, const Candidates& candidates);
+
+}  // namespace stiffsoft

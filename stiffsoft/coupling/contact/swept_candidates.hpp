@@ -1,0 +1,39 @@
+#pragma once
+/// @file One broad phase per Newton iteration instead of one per line-search trial: the
+/// candidates of the swept boxes x → x + Δx, grown by d̂/2 plus a slack, hold every pair that
+/// can come within d̂ anywhere on that segment (and slightly off it), so the line search's
+/// trials and the CCD bound of the same direction reuse them (IPC's use of the CCD broad
+/// phase). A configuration that strays from the segment falls back to a fresh broad phase.
+
+#include <Eigen/Core>
+#include <optional>
+
+#include <stiffsoft/coupling/contact/broad_phase.hpp>
+#include <stiffsoft/coupling/model/model.hpp>
+
+namespace stiffsoft {
+
+/// Candidates of one Newton direction, with the region they are valid in.
+class SweptCandidates {
+ public:
+  /// Broad phase of the segment x0 → x1 (|V|×3, m), every box grown by proximity + slack (m):
+  /// pairs closer than 2·proximity at any configuration whose vertices lie within `slack`
+  /// of their own swept boxes are candidates.
+  SweptCandidates(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, double proximity,
+                  double slack);
+  /// True when every vertex of x (|V|×3, m) lies within the slack of its swept box, so the
+  /// candidates hold every pair of x closer than 2·proximity.
+  bool covers(const Eigen::MatrixX3d& x) const;
+  /// Every candidate (a superset of the proximity pairs of a covered configuration).
+  const Candidates& all() const { return m_all; }
+  /// The candidates whose swept boxes overlap without any growth: exactly what
+  /// broad_phase(model, x0, x1, 0) finds, for the CCD of the segment.
+  Candidates for_ccd(const Model& model) const;
+
+ private:
+  Eigen::ArrayX3d m_lo, m_hi;  ///< per-vertex swept box (no growth)
+  double m_slack;              ///< allowed distance of a covered configuration from the swept boxes (m)
+  Candidates m_all;
+};
+
+}  // namespace stiffsoft

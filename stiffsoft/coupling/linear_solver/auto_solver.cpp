@@ -1,0 +1,69 @@
+#include <stiffsoft/coupling/linear_solver/auto_solver.hpp>
+
+#include <cmath>
+#include <stdexcept>
+
+#include <stiffsoft/coupling/linear_solver/cholmod_solver.hpp>
+#include <stiffsoft/coupling/linear_solver/petsc_solver.hpp>
+
+namespace stiffsoft {
+
+AutoSolver::AutoSolver() = default;
+AutoSolver::~AutoSolver() = default;
+
+void AutoSolver::analyze_pattern(const Eigen::SparseMatrix<double>& upper) {
+  const long nonzeros = long(upper.nonZeros());
+  const bool redecide = !m_backend || std::abs(nonzeros - m_decided_nonzeros) >
+                                          kAutoRedecideChange * double(m_decided_nonzeros);
+  if (!redecide) {
+    m_backend->analyze_pattern(upper);
+    return;
+  }
+  m_decided_nonzeros = nonzeros;
+  if (upper.rows() < kAutoKrylovRows) {
+    auto cholmod = std::make_unique<CholmodSolver>();
+    cholmod->analyze_pattern(upper);
+    if (cholmod->factor_flops() <= kAutoCholmodFlops) {
+      m_backend = std::move(cholmod);  // analysed already
+      m_krylov = false;
+      return;
+    }
+  }
+  if (!m_krylov || !m_backend) {
+    m_backend = std::make_unique<PetscSolver>(default_petsc_method());
+    m_krylov = true;
+    if (m_eta > 0) m_backend->set_relative_tolerance(m_eta);
+    if (!m_block_sizes.empty()) m_backend->set_block_sizes(m_block_sizes);
+  }
+  m_backend->analyze_pattern(upper);
+}
+
+bool AutoSolver::factorize(const Eigen::SparseMatrix<double>& upper) {
+  if (!m_backend) analyze_pattern(upper);
+  const bool ok = m_backend->factorize(upper);
+  m_report = m_backend->last_report();
+  return ok;
+}
+
+Eigen::VectorXd AutoSolver::solve(const Eigen::VectorXd& b) {
+  if (!m_backend) throw std::logic_error("AutoSolver::solve before factorize");
+  Eigen::VectorXd p = m_backend->solve(b);
+  m_report = m_backend->last_report();
+  return p;
+}
+
+std::string AutoSolver::name() const { return m_backend ? "auto→" + m_backend->name() : "auto"; }
+
+void AutoSolver::set_relative_tolerance(double eta) {
+  m_eta = eta;
+  if (m_backend) m_backend->set_relative_tolerance(eta);
+}
+
+bool AutoSolver::is_iterative() const { return m_backend && m_backend->is_iterative(); }
+
+void AutoSolver::set_block_sizes(const std::vector<int>& sizes) {
+  m_block_sizes = sizes;
+  if (m_backend) m_backend->set_block_sizes(sizes);
+}
+
+}  // namespace stiffsoft

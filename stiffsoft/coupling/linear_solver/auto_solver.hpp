@@ -1,0 +1,60 @@
+#pragma once
+/// @file The "auto" linear solver: CHOLMOD when its factorisation is cheap, PETSc's default
+/// Krylov method (CG with ICC(0)) otherwise, from CHOLMOD's own prediction of its cost.
+
+#include <memory>
+
+#include <stiffsoft/coupling/linear_solver/linear_solver.hpp>
+
+namespace stiffsoft {
+
+/// Predicted factorisation cost (CHOLMOD's symbolic analysis, cholmod_common::fl) up to which
+/// "auto" keeps CHOLMOD. From bench/linear_solver_bench (docs/benchmarks.md, "Linear
+/// solvers"): the rigid pile `medium` (0.98 Mflop) was factorised and solved by CHOLMOD in 1.3
+/// ms against 3.8 ms for CG + ICC(0) at η = 1e-8 (1.1 ms at 1e-3), while every system above
+/// 2.8 Mflop (hybrid and soft scenes, `full`, 3D lattices) was solved 2× to 100× faster by
+/// CG + ICC(0) than by CHOLMOD (reference BLAS, 2 busy cores).
+constexpr double kAutoCholmodFlops = 2e6;
+
+/// Rows from which "auto" takes the Krylov method without asking CHOLMOD: its analysis alone
+/// costs about as much as a Krylov solve there (81 000 rows: 1 s against 0.4–0.7 s).
+constexpr int kAutoKrylovRows = 50000;
+
+/// The analysis is repeated only when the number of stored entries moved by more than this
+/// fraction since the last decision (contacts come and go at every few Newton iterations).
+constexpr double kAutoRedecideChange = 0.25;
+
+/// Delegates to CHOLMOD or to PETSc (default_petsc_method()): below kAutoKrylovRows rows
+/// CHOLMOD analyses the pattern and is kept when it predicts at most kAutoCholmodFlops for the
+/// factorisation; otherwise PETSc. The decision is revisited at an analyze_pattern() whose
+/// number of stored entries differs by more than kAutoRedecideChange from the last decision's.
+class AutoSolver final : public LinearSolver {
+ public:
+  /// Nothing chosen yet.
+  AutoSolver();
+  /// Frees the chosen backend.
+  ~AutoSolver() override;
+  /// Chooses the backend (see the class comment), which then has analysed the pattern.
+  void analyze_pattern(const Eigen::SparseMatrix<double>& upper) override;
+  /// See LinearSolver.
+  bool factorize(const Eigen::SparseMatrix<double>& upper) override;
+  /// See LinearSolver.
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) override;
+  /// "auto→" followed by the chosen backend's name, e.g. "auto→cholmod".
+  std::string name() const override;
+  /// Kept and passed on to a Krylov backend.
+  void set_relative_tolerance(double eta) override;
+  /// True when the chosen backend is iterative.
+  bool is_iterative() const override;
+  /// Kept and passed on to the chosen backend.
+  void set_block_sizes(const std::vector<int>& sizes) override;
+
+ private:
+  std::unique_ptr<LinearSolver> m_backend;
+  bool m_krylov = false;
+  long m_decided_nonzeros = 0;  // stored entries at the last decision
+  double m_eta = 0;
+  std::vector<int> m_block_sizes;
+};
+
+}  // namespace stiffsoft

@@ -1,0 +1,165 @@
+#include <stiffsoft/coupling/linear_solver/block_sparse_pattern.hpp>
+
+#include <algorithm>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+namespace stiffsoft {
+
+namespace {
+
+/// Position of block column J in the block row whose columns are [begin, end), or −1.
+std::int64_t find_block(const std::vector<int>& columns, int begin, int end, int J) {
+  const auto first = columns.begin() + begin, last = columns.begin() + end;
+  const auto it = std::lower_bound(first, last, J);
+  return (it != last && *it == J) ? std::int64_t(it - columns.begin()) : -1;
+}
+
+}  // namespace
+
+BlockSparsePattern::BlockSparsePattern(const Eigen::SparseMatrix<double>& upper, BlockStorage storage,
+                                       int row_begin, int row_end)
+    : m_storage(storage) {
+  const int n = int(upper.rows());
+  if (upper.cols() != n || n % 3 != 0)
+    throw std::invalid_argument("BlockSparsePattern: the matrix is " + std::to_string(upper.rows()) + " × " +
+                                std::to_string(upper.cols()) + "; expected square with a multiple of 3 rows");
+  if (!upper.isCompressed())
+    throw std::invalid_argument("BlockSparsePattern: the matrix must be compressed (makeCompressed())");
+  m_num_block_rows = n / 3;
+  m_row_begin = row_begin;
+  m_row_end = row_end < 0 ? m_num_block_rows : row_end;
+  if (m_row_begin < 0 || m_row_begin > m_row_end || m_row_end > m_num_block_rows)
+    throw std::invalid_argument("BlockSparsePattern: block rows [" + std::to_string(row_begin) + ", " +
+                                std::to_string(row_end) + ") outside [0, " +
+                                std::to_string(m_num_block_rows) + ")");
+  const int* outer = upper.outerIndexPtr();
+  const int* inner = upper.innerIndexPtr();
+  m_outer.assign(outer, outer + n + 1);
+  m_inner.assign(inner, inner + upper.nonZeros());
+  auto owned = [&](int I) { return I >= m_row_begin && I < m_row_end; };
+
+  // Block columns of each owned block row. Scalar columns of one block column J are
+  // consecutive, so `seen[I] == J` deduplicates the 9 scalars of block (I, J).
+  const int local = m_row_end - m_row_begin;
+  std::vector<std::vector<int>> rows(local);
+  std::vector<int> seen(m_num_block_rows, -1);
+  for (int c = 0; c < n; ++c) {
+    const int J = c / 3;
+    for (int k = outer[c]; k < outer[c + 1]; ++k) {
+      const int r = inner[k];
+      if (r > c)
+        throw std::invalid_argument("BlockSparsePattern: entry (" + std::to_string(r) + ", " +
+                                    std::to_string(c) +
+                                    ") lies below the diagonal; expected the upper triangle only");
+      const int I = r / 3;
+      if (seen[I] == J) continue;
+      seen[I] = J;
+      if (owned(I)) rows[I - m_row_begin].push_back(J);
+      if (storage == BlockStorage::Full && I != J && owned(J)) rows[J - m_row_begin].push_back(I);
+    }
+  }
+  m_row_offsets.assign(local + 1, 0);
+  for (int i = 0; i < local; ++i) {
+    std::sort(rows[i].begin(), rows[i].end());
+    m_row_offsets[i + 1] = m_row_offsets[i] + int(rows[i].size());
+  }
+  m_block_columns.reserve(m_row_offsets[local]);
+  for (const std::vector<int>& r : rows) m_block_columns.insert(m_block_columns.end(), r.begin(), r.end());
+
+  // Where each scalar goes: entry (r, c) at element (r mod 3, c mod 3) of block (I, J), its
+  // mirror (c, r) at element (c mod 3, r mod 3) of block (J, I); blocks are column-major.
+  const std::int64_t nnz = upper.nonZeros();
+  m_target.assign(nnz, -1);
+  m_mirror.assign(nnz, -1);
+  auto position = [&](int I, int J) {
+    const int i = I - m_row_begin;
+    return find_block(m_block_columns, m_row_offsets[i], m_row_offsets[i + 1], J);
+  };
+  for (int c = 0; c < n; ++c) {
+    const int J = c / 3;
+    for (int k = outer[c]; k < outer[c + 1]; ++k) {
+      const int r = inner[k];
+      const int I = r / 3;
+      if (owned(I)) m_target[k] = 9 * position(I, J) + 3 * (c % 3) + r % 3;
+      if (r == c) continue;
+      if (I == J) {
+        if (owned(I)) m_mirror[k] = 9 * position(I, J) + 3 * (r % 3) + c % 3;
+      } else if (storage == BlockStorage::Full && owned(J)) {
+        m_mirror[k] = 9 * position(J, I) + 3 * (r % 3) + c % 3;
+      }
+    }
+  }
+}
+
+void BlockSparsePattern::gather_values(const Eigen::SparseMatrix<double>& upper,
+                                       std::vector<double>& values) const {
+  if (!same_pattern(upper))
+    throw std::invalid_argument(
+        "BlockSparsePattern::gather_values: the matrix's pattern differs from the analysed one");
+  values.assign(num_values(), 0.0);
+  const double* v = upper.valuePtr();
+  const std::int64_t nnz = upper.nonZeros();
+  for (std::int64_t k = 0; k < nnz; ++k) {
+    if (m_target[k] >= 0) values[m_target[k]] = v[k];
+    if (m_mirror[k] >= 0) values[m_mirror[k]] = v[k];
+  }
+}
+
+bool BlockSparsePattern::same_pattern(const Eigen::SparseMatrix<double>& upper) const {
+  if (!upper.isCompressed() || upper.rows() + 1 != std::int64_t(m_outer.size()) ||
+      upper.nonZeros() != std::int64_t(m_inner.size()))
+    return false;
+  return std::equal(m_outer.begin(), m_outer.end(), upper.outerIndexPtr()) &&
+         std::equal(m_inner.begin(), m_inner.end(), upper.innerIndexPtr());
+}
+
+void BlockSparsePattern::count_blocks(int column_begin, int column_end, std::vector<int>& diagonal,
+                                      std::vector<int>& off_diagonal) const {
+  const int local = m_row_end - m_row_begin;
+  diagonal.assign(local, 0);
+  off_diagonal.assign(local, 0);
+  for (int i = 0; i < local; ++i)
+    for (int k = m_row_offsets[i]; k < m_row_offsets[i + 1]; ++k) {
+      const int J = m_block_columns[k];
+      (J >= column_begin && J < column_end ? diagonal : off_diagonal)[i] += 1;
+    }
+}
+
+std::vector<int> infer_block_sizes(const Eigen::SparseMatrix<double>& upper) {
+  const BlockSparsePattern pattern(upper, BlockStorage::Upper);
+  const std::vector<int>& offsets = pattern.row_offsets();
+  const std::vector<int>& columns = pattern.block_columns();
+  auto present = [&](int I, int J) { return find_block(columns, offsets[I], offsets[I + 1], J) >= 0; };
+  const int nb = pattern.num_block_rows();
+  std::vector<int> sizes;
+  for (int I = 0; I < nb;) {
+    bool dense = I + 3 < nb;
+    for (int a = 0; dense && a < 3; ++a)
+      for (int b = a + 1; dense && b < 4; ++b) dense = present(I + a, I + b);
+    sizes.push_back(dense ? 12 : 3);
+    I += dense ? 4 : 1;
+  }
+  return sizes;
+}
+
+std::vector<int> split_rows(const std::vector<int>& block_sizes, int parts) {
+  if (parts < 1)
+    throw std::invalid_argument("split_rows: parts = " + std::to_string(parts) + "; expected ≥ 1");
+  const std::int64_t n = std::accumulate(block_sizes.begin(), block_sizes.end(), std::int64_t(0));
+  std::vector<int> bounds{0};
+  std::int64_t row = 0;
+  std::size_t b = 0;
+  for (int p = 1; p < parts; ++p) {
+    const std::int64_t target = n * p / parts;
+    // Take blocks while that brings the boundary closer to the target.
+    while (b < block_sizes.size() && std::abs(row + block_sizes[b] - target) <= std::abs(row - target))
+      row += block_sizes[b++];
+    bounds.push_back(int(row));
+  }
+  bounds.push_back(int(n));
+  return bounds;
+}
+
+}  // namespace stiffsoft

@@ -1,0 +1,99 @@
+#include <stiffsoft/coupling/model/model.hpp>
+
+#include <algorithm>
+
+namespace stiffsoft {
+
+int Model::add_block(int size) {
+  blocks.push_back({num_dofs, size});
+  num_dofs += size;
+  return int(blocks.size()) - 1;
+}
+
+abd::Vector12d Model::kinematic_q(int b, double t) const {
+  const BodyModel& body = bodies[b];
+  abd::Vector12d q = body.q0;
+  for (const PathSegment& leg : body.path) {
+    const double dt = std::min(t, leg.duration);
+    q = abd::rigid_motion(q, leg.velocity, leg.angular_velocity, dt);
+    t -= dt;
+    if (t <= 0) return q;
+  }
+  return abd::rigid_motion(q, body.v_after, body.w_after, t);
+}
+
+Eigen::MatrixX3d Model::node_positions(const Eigen::VectorXd& q) const {
+  Eigen::MatrixX3d x = nodes.X;
+  for (int i = 0; i < nodes.size(); ++i)
+    if (nodes.dof[i] >= 0) x.row(i) = q.segment<3>(nodes.dof[i]).transpose();
+  return x;
+}
+
+Eigen::MatrixX3d Model::surface(const Eigen::VectorXd& q) const {
+  Eigen::MatrixX3d x(mesh.x_bar.rows(), 3);
+  for (int b = 0; b < int(bodies.size()); ++b) {
+    const BodyModel& body = bodies[b];
+    if (body.representation == Representation::Soft) {
+      for (int v = body.vertex_begin; v < body.vertex_end; ++v) {
+        const int node = mesh.vertex_node[v];
+        x.row(v) = nodes.dof[node] < 0 ? Eigen::RowVector3d(nodes.X.row(node))
+                                       : Eigen::RowVector3d(q.segment<3>(nodes.dof[node]).transpose());
+      }
+      continue;
+    }
+    const abd::Vector12d qb = body_q(b, q);
+    const Eigen::Matrix3d A = abd::affine_matrix(qb);
+    const Eigen::RowVector3d p = abd::translation(qb).transpose();
+    const int n = body.vertex_end - body.vertex_begin;
+    x.middleRows(body.vertex_begin, n) =
+        (mesh.x_bar.middleRows(body.vertex_begin, n) * A.transpose()).rowwise() + p;
+  }
+  return x;
+}
+
+Eigen::MatrixX3d Model::surface_step(const Eigen::VectorXd& dq) const {
+  Eigen::MatrixX3d dx = Eigen::MatrixX3d::Zero(mesh.x_bar.rows(), 3);
+  for (const BodyModel& body : bodies) {
+    if (body.representation == Representation::Soft) {
+      for (int v = body.vertex_begin; v < body.vertex_end; ++v) {
+        const int dof = nodes.dof[mesh.vertex_node[v]];
+        if (dof >= 0) dx.row(v) = dq.segment<3>(dof).transpose();
+      }
+      continue;
+    }
+    if (body.dof < 0) continue;
+    const abd::Vector12d d = dq.segment<12>(body.dof);
+    const Eigen::Matrix3d dA = abd::affine_matrix(d);
+    const int n = body.vertex_end - body.vertex_begin;
+    dx.middleRows(body.vertex_begin, n) =
+        (mesh.x_bar.middleRows(body.vertex_begin, n) * dA.transpose()).rowwise() +
+        abd::translation(d).transpose();
+  }
+  return dx;
+}
+
+Eigen::VectorXd Model::initial_q() const {
+  Eigen::VectorXd q(num_dofs);
+  for (const BodyModel& body : bodies)
+    if (body.dof >= 0) q.segment<12>(body.dof) = body.q0;
+  for (int i = 0; i < nodes.size(); ++i)
+    if (nodes.dof[i] >= 0) q.segment<3>(nodes.dof[i]) = nodes.X.row(i).transpose();
+  return q;
+}
+
+Eigen::VectorXd Model::initial_qdot() const {
+  Eigen::VectorXd qdot(num_dofs);
+  for (const BodyModel& body : bodies)
+    if (body.dof >= 0) qdot.segment<12>(body.dof) = abd::rigid_velocity(body.q0, body.v0, body.w0);
+  for (int i = 0; i < nodes.size(); ++i)
+    if (nodes.dof[i] >= 0) qdot.segment<3>(nodes.dof[i]) = nodes.velocity.row(i).transpose();
+  return qdot;
+}
+
+double Model::bounding_box_diagonal() const {
+  const Eigen::MatrixX3d x = surface(initial_q());
+  if (x.rows() == 0) return 1.0;
+  return (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm();
+}
+
+}  // namespace stiffsoft

@@ -1,0 +1,35 @@
+#pragma once
+/// @file How a contact stencil's surface points depend on the DOFs: x_stencil = Σ_s J_s q_s
+/// over the DOF blocks of its vertices (at most four): J_s stacks J(x̄) (3×12) for the vertices
+/// of an affine body and the identity (3×3) for a soft node. Fixed bodies and nodes carry no
+/// DOFs and drop out.
+
+#include <Eigen/Core>
+#include <array>
+
+#include <stiffsoft/coupling/model/block_hessian.hpp>
+#include <stiffsoft/coupling/model/model.hpp>
+
+namespace stiffsoft {
+
+/// The linear map from the DOF blocks of a stencil's vertices to its packed vertex positions.
+struct StencilJacobian {
+  /// ∂x_stencil/∂q_s of one slot: 12 × 12, of which the first `columns[s]` (12 or 3) are used
+  /// (fixed size, so the products below compile to unrolled kernels).
+  using SlotMatrix = Eigen::Matrix<double, 12, 12>;
+  std::array<int, 4> block{-1, -1, -1, -1};  ///< DOF block of each slot
+  std::array<int, 4> offset{-1, -1, -1, -1}; ///< first DOF of each slot in q
+  std::array<SlotMatrix, 4> J;               ///< ∂x_stencil/∂q_slot, zero beyond its columns
+  std::array<int, 4> columns{0, 0, 0, 0};    ///< DOFs of each slot's block (12 affine, 3 soft node)
+  int slots = 0;                             ///< number of slots with DOFs
+
+  /// Builds the map for the given stencil vertices (−1 entries unused).
+  StencilJacobian(const Model& model, const std::array<int, 4>& vertices);
+
+  /// Adds Jᵀ g_x to the global gradient g.
+  void scatter_gradient(const Eigen::Matrix<double, 12, 1>& g_x, Eigen::VectorXd& g) const;
+  /// Adds Jᵀ H_x J to the global Hessian.
+  void scatter_hessian(const Eigen::Matrix<double, 12, 12>& H_x, BlockHessian& H) const;
+};
+
+}  // namespace stiffsoft

@@ -1,0 +1,148 @@
+#include <stiffsoft/coupling/solver/newton.hpp>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <stiffsoft/coupling/linear_solver/forcing_term.hpp>
+
+namespace stiffsoft {
+
+namespace {
+
+double total_energy(const std::vector<EnergyTerm*>& terms, const Configuration& c) {
+  double e = 0;
+  for (const EnergyTerm* t : terms) e += t->value(c);
+  return e;
+}
+
+void update_all(const std::vector<EnergyTerm*>& terms, const Configuration& c) {
+  for (EnergyTerm* t : terms) t->update(c);
+}
+
+/// The Newton direction p = −H⁻¹g; if the projected Hessian is numerically singular, shifts
+/// its diagonal until the factorisation succeeds.
+bool newton_direction(const Model& model, const std::vector<EnergyTerm*>& terms, const Configuration& c,
+                      const Eigen::VectorXd& g, LinearSolver& solver, std::vector<std::int64_t>& pattern,
+                      PhaseTimes& times, const ReducedBasis* basis, Eigen::VectorXd& p) {
+  BlockHessian H(model.blocks);
+  {
+    ScopedTimer timer(times.assembly);
+    for (const EnergyTerm* t : terms) t->add_hessian(c, H);
+  }
+  ScopedTimer timer(times.solve);
+  Eigen::SparseMatrix<double> A = basis ? basis->reduce_upper(H.upper()) : H.upper();
+  const Eigen::VectorXd b = basis ? Eigen::VectorXd(-basis->reduce(g)) : Eigen::VectorXd(-g);
+  std::vector<std::int64_t> new_pattern = H.pattern();
+  if (new_pattern != pattern || pattern.empty()) {
+    solver.analyze_pattern(A);
+    pattern = std::move(new_pattern);
+  }
+  double shift = 0;
+  const double scale = A.diagonal().cwiseAbs().maxCoeff();
+  for (int attempt = 0; attempt < 8; ++attempt) {
+    if (solver.factorize(A)) {
+      p = solver.solve(b);
+      if (basis && p.allFinite()) p = basis->expand(p);
+      if (p.allFinite()) return true;
+    }
+    const double next = shift == 0 ? 1e-10 * scale : 10 * shift;
+    for (int i = 0; i < A.rows(); ++i) A.coeffRef(i, i) += next - shift;
+    shift = next;
+  }
+  return false;
+}
+
+}  // namespace
+
+NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>& terms,
+                             Eigen::VectorXd& q, LinearSolver& solver, const NewtonSettings& settings,
+                             PhaseTimes& times, const ReducedBasis* basis) {
+  NewtonReport report;
+  Eigen::MatrixX3d x = model.surface(q);
+  update_all(terms, {q, x});
+  double E = total_energy(terms, {q, x});
+  std::vector<std::int64_t> pattern;
+  Eigen::VectorXd g(q.size()), p(q.size()), q_trial(q.size());
+  double eta = 0, g_norm_previous = 0;  // Eisenstat–Walker state
+  if (basis && solver.is_iterative())
+    throw std::invalid_argument("newton_minimize: the " + solver.name() +
+                                " linear solver is iterative, which joints' eliminated equalities do not support; "
+                                "use cholmod");
+  // Direct backends ignore the block sizes and η; `auto` may turn iterative at any analysis.
+  if (!basis) {
+    std::vector<int> sizes;
+    for (const DofBlock& b : model.blocks) sizes.push_back(b.size);
+    solver.set_block_sizes(sizes);
+  }
+
+  for (; report.iterations < settings.max_iterations; ++report.iterations) {
+    const Configuration c{q, x};
+    g.setZero();
+    {
+      ScopedTimer timer(times.assembly);
+      for (const EnergyTerm* t : terms) t->add_gradient(c, g);
+    }
+    const double g_norm = g.norm();
+    eta = forcing_term(g_norm, g_norm_previous, eta, settings.forcing);
+    g_norm_previous = g_norm;
+    solver.set_relative_tolerance(eta);
+    const bool solved = newton_direction(model, terms, c, g, solver, pattern, times, basis, p);
+    const LinearSolveReport& linear = solver.last_report();
+    report.linear_iterations += linear.iterations;
+    report.linear_fallbacks += linear.fallback_used;
+    if ((linear.fallback_used || !solved) && report.linear_failure.empty())
+      report.linear_failure = "iteration " + std::to_string(report.iterations + 1) + ": " +
+                              (linear.fallback_used ? linear.primary_failure + ", solved by the fallback"
+                                                    : std::string(to_string(linear.status)) + " " + linear.reason);
+    if (!solved) {
+      report.failure = "the linear solve failed even with a regularised Hessian (" + report.linear_failure + ")";
+      break;
+    }
+    const Eigen::MatrixX3d dx = model.surface_step(p);
+    report.last_step_speed = (dx.rows() ? dx.rowwise().norm().maxCoeff() : 0.0) / settings.h;
+    // A step below the tolerance is still taken (when it lowers E): skipping it would freeze
+    // a body whose per-step velocity change is below ε_d, e.g. a block starting to slide.
+    const bool small_step = report.last_step_speed < settings.tolerance;
+    double alpha = 1.0;
+    for (const EnergyTerm* t : terms) alpha = std::min(alpha, t->max_step(c, p, dx));
+    report.smallest_ccd_step = std::min(report.smallest_ccd_step, alpha);
+    bool accepted = false;
+    Eigen::MatrixX3d x_trial;
+    for (int ls = 0; alpha > 0 && ls < settings.max_line_search; ++ls) {
+      ++report.line_search_steps;
+      q_trial = q + alpha * p;
+      x_trial = model.surface(q_trial);
+      update_all(terms, {q_trial, x_trial});
+      if (total_energy(terms, {q_trial, x_trial}) <= E) {
+        accepted = true;
+        break;
+      }
+      alpha *= 0.5;
+    }
+    if (accepted) {
+      q.swap(q_trial);
+      x.swap(x_trial);
+      for (EnergyTerm* t : terms) t->end_iteration({q, x});
+      E = total_energy(terms, {q, x});
+    } else {
+      update_all(terms, {q, x});
+    }
+    if (small_step) {
+      report.converged = true;
+      ++report.iterations;
+      break;
+    }
+    if (!accepted) {
+      report.failure = alpha > 0 ? "the line search found no decrease of the energy"
+                                 : "CCD allowed no step along the Newton direction";
+      break;
+    }
+  }
+  if (!report.converged && report.failure.empty())
+    report.failure = "the iteration cap (" + std::to_string(settings.max_iterations) + ") was reached";
+  report.energy = E;
+  return report;
+}
+
+}  // namespace stiffsoft

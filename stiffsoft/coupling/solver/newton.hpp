@@ -1,0 +1,54 @@
+#pragma once
+/// @file Projected Newton with a CCD-bounded backtracking line search that accepts only
+/// decreasing energy (IPC, Li et al. 2020, Alg. 1; ABD, Lan et al. 2022, Alg. 1).
+
+#include <string>
+#include <vector>
+
+#include <stiffsoft/coupling/joints/reduced_basis.hpp>
+#include <stiffsoft/coupling/linear_solver/forcing_term.hpp>
+#include <stiffsoft/coupling/linear_solver/linear_solver.hpp>
+#include <stiffsoft/coupling/model/model.hpp>
+#include <stiffsoft/coupling/solver/phase_times.hpp>
+#include <stiffsoft/coupling/terms/energy_term.hpp>
+
+namespace stiffsoft {
+
+/// Newton's stopping rule and limits.
+struct NewtonSettings {
+  double tolerance = 1e-2;   ///< ε_d (m/s): stop when max_k ‖(Φp)_k‖ / h < ε_d
+  double h = 1e-2;           ///< time step (s), to turn the step into a speed
+  int max_iterations = 200;  ///< cap on iterations
+  int max_line_search = 60;  ///< cap on halvings of α
+  ForcingTermSettings forcing;  ///< relative tolerances of Krylov solves (inexact Newton)
+};
+
+/// What one minimisation did.
+struct NewtonReport {
+  bool converged = false;        ///< the stopping rule was met
+  int iterations = 0;            ///< Newton iterations (linear solves)
+  int line_search_steps = 0;     ///< energy evaluations in line searches
+  double smallest_ccd_step = 1;  ///< smallest α bound returned by CCD
+  double energy = 0;             ///< E at the result
+  double last_step_speed = 0;    ///< max surface step / h of the last direction (m/s)
+  int linear_iterations = 0;     ///< Krylov iterations summed over the linear solves (0 for direct solvers)
+  int linear_fallbacks = 0;      ///< linear solves whose primary method failed and a fallback solved
+  std::string linear_failure;    ///< the first linear-solve failure ("iteration k: …"), empty if none
+  std::string failure;           ///< why it stopped without converging
+};
+
+/// Minimises Σ terms over q, starting from (and overwriting) q. Terms get update() at every
+/// configuration they are evaluated at. With an iterative linear solver the Krylov tolerance
+/// of each solve follows Eisenstat–Walker's forcing terms (linear_solver/forcing_term.hpp);
+/// the stopping rule stays the step-size rule above.
+///
+/// With a reduced basis q = N z + q_p (joints' linear equalities, joints/reduced_basis.hpp),
+/// q must satisfy the equalities on entry; each direction solves (Nᵀ H N) dz = −Nᵀ g and steps
+/// along p = N dz, so every iterate keeps them (to round-off). The line search, CCD and the
+/// stopping rule are unchanged. Krylov backends are not supported with a basis (their DOF
+/// blocks do not survive the elimination): std::invalid_argument.
+NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>& terms,
+                             Eigen::VectorXd& q, LinearSolver& solver, const NewtonSettings& settings,
+                             PhaseTimes& times, const ReducedBasis* basis = nullptr);
+
+}  // namespace stiffsoft

@@ -1,0 +1,303 @@
+#include <stiffsoft/coupling/solver/simulation.hpp>
+
+#include <Eigen/QR>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <stiffsoft/libabd/orthogonality_potential.hpp>
+
+namespace stiffsoft {
+
+namespace {
+BarrierSettings barrier_settings(const Model& model, const SimulationSettings& s) {
+  BarrierSettings b;
+  b.dhat = s.dhat;
+  b.kappa = s.kappa;
+  b.bbox_diagonal = model.bounding_box_diagonal();
+  double mass = 0;
+  int n = 0;
+  // Average over what carries DOFs: dynamic affine bodies and dynamic soft nodes (IPC
+  // averages over nodes; an affine body is one node of mass m).
+  for (const BodyModel& body : model.bodies)
+    if (body.dof >= 0 && body.motion == Motion::Dynamic) {
+      mass += body.mass;
+      ++n;
+    }
+  for (int i = 0; i < model.nodes.size(); ++i)
+    if (model.nodes.motion[i] == Motion::Dynamic) {
+      mass += model.nodes.mass[i];
+      ++n;
+    }
+  b.average_mass = n ? mass / n : 1.0;
+  return b;
+}
+
+/// The linear solver of the settings; with linear joint equalities "auto" is CHOLMOD (the
+/// reduced system has no DOF blocks for a Krylov backend) and a PETSc backend is an error.
+std::string linear_solver_name(const Model& model, const SimulationSettings& s) {
+  if (linear_joint_constraints(model).rows() == 0) return s.linear_solver;
+  if (s.linear_solver == "auto") return "cholmod";
+  if (s.linear_solver.rfind("petsc", 0) == 0)
+    throw std::invalid_argument("linear solver \"" + s.linear_solver +
+                                "\": scenes with ball, hinge or prismatic joints need a direct solver "
+                                "(cholmod or auto); their eliminated equalities leave no DOF blocks for PETSc");
+  return s.linear_solver;
+}
+}  // namespace
+
+namespace {
+/// The settings, once validate() has accepted them.
+const SimulationSettings& validated(const SimulationSettings& settings) {
+  validate(settings);
+  return settings;
+}
+}  // namespace
+
+Simulation::Simulation(Model model, const SimulationSettings& settings)
+    : m_model(std::move(model)),
+      m_settings(validated(settings)),
+      m_solver(make_linear_solver(linear_solver_name(m_model, settings))),
+      m_inertia(m_model, settings.kinematic_weight),
+      m_orthogonality(m_model, integrator_beta(settings.integrator) * settings.h * settings.h),
+      m_elasticity(m_model, integrator_beta(settings.integrator) * settings.h * settings.h),
+      m_barrier(m_model, barrier_settings(m_model, settings), &m_times),
+      m_constraints(linear_joint_constraints(m_model)),
+      m_joints(m_model, integrator_beta(settings.integrator) * settings.h * settings.h),
+      m_damping(m_model) {
+  if (settings.mu > 0) m_friction.emplace(m_model, settings.mu, settings.eps_v * settings.h);
+  m_q = m_model.initial_q();
+  if (m_constraints.rows() > 0) {
+    const std::vector<double> violation = joint_violations(m_constraints, m_q, int(m_model.joints.size()));
+    const double tolerance = 1e-9 * std::max(1.0, m_model.bounding_box_diagonal());
+    for (std::size_t j = 0; j < violation.size(); ++j)
+      if (violation[j] > tolerance)
+        throw std::invalid_argument("joint " + m_model.joints[j].name + ": the initial poses violate it by " +
+                                    std::to_string(violation[j]) + " m (expected ≤ " + std::to_string(tolerance) +
+                                    " m)");
+    m_basis.emplace(m_model, m_constraints);
+  }
+  m_qdot = m_model.initial_qdot();
+  m_q_prev = m_q - settings.h * m_qdot;
+  m_qdot_prev = m_qdot;
+  m_gravity_q = Eigen::VectorXd::Zero(m_model.num_dofs);
+  for (const BodyModel& body : m_model.bodies)
+    if (body.dof >= 0 && body.motion == Motion::Dynamic) m_gravity_q.segment<3>(body.dof) = settings.gravity;
+  const SoftNodes& nodes = m_model.nodes;
+  for (int i = 0; i < nodes.size(); ++i)
+    if (nodes.motion[i] == Motion::Dynamic) m_gravity_q.segment<3>(nodes.dof[i]) = settings.gravity;
+}
+
+StepStats Simulation::step() {
+  const auto start = std::chrono::steady_clock::now();
+  m_times = PhaseTimes{};
+  const double h = m_settings.h;
+  Eigen::VectorXd q_tilde =
+      predicted_q(m_settings.integrator, h, m_q, m_qdot, m_q_prev, m_qdot_prev, m_gravity_q);
+  for (int b = 0; b < int(m_model.bodies.size()); ++b)
+    if (m_model.bodies[b].dof >= 0 && m_model.bodies[b].motion == Motion::Kinematic)
+      q_tilde.segment<12>(m_model.bodies[b].dof) = m_model.kinematic_q(b, m_time + h);
+  const SoftNodes& nodes = m_model.nodes;
+  for (int i = 0; i < nodes.size(); ++i)
+    if (nodes.motion[i] == Motion::Kinematic)
+      q_tilde.segment<3>(nodes.dof[i]) = (nodes.X.row(i) + (m_time + h) * nodes.velocity.row(i)).transpose();
+  m_inertia.set_target(q_tilde);
+
+  // Lag friction and balance κ at the start-of-step configuration.
+  const Eigen::MatrixX3d x_n = m_model.surface(m_q);
+  const Configuration c_n{m_q, x_n};
+  m_barrier.update(c_n);
+  // Only the terms the scene needs: no orthogonality without affine bodies, no elasticity
+  // without soft ones, no friction with μ = 0.
+  std::vector<EnergyTerm*> terms{&m_inertia};
+  if (!m_orthogonality.empty()) terms.push_back(&m_orthogonality);
+  if (!m_elasticity.empty()) terms.push_back(&m_elasticity);
+  Eigen::VectorXd grad_other = Eigen::VectorXd::Zero(m_q.size());
+  for (const EnergyTerm* t : terms) t->add_gradient(c_n, grad_other);
+  m_barrier.initialize_stiffness(c_n, grad_other);
+  terms.push_back(&m_barrier);
+  if (m_friction) {
+    m_friction->lag(c_n, m_barrier);
+    terms.push_back(&*m_friction);
+  }
+  if (!m_joints.empty()) terms.push_back(&m_joints);
+  const double beta = integrator_beta(m_settings.integrator);
+  m_damping.start_step(m_q, beta * h);
+  m_damping.lag_contact(c_n, m_barrier, m_settings.contact_damping, m_settings.contact_pair_damping, beta * h * h);
+  m_damping.lag_joints();
+  if (!m_damping.empty()) terms.push_back(&m_damping);
+
+  NewtonSettings ns;
+  ns.tolerance = m_settings.tolerance;
+  ns.h = h;
+  ns.max_iterations = m_settings.max_iterations;
+  ns.forcing.eta_max = m_settings.krylov_rtol_max;
+  Eigen::VectorXd q_new = initial_guess(q_tilde, c_n);
+  StepStats stats;
+  stats.newton = newton_minimize(m_model, terms, q_new, *m_solver, ns, m_times, reduced_basis());
+  if (m_basis) q_new = m_basis->project(q_new);  // removes round-off drift along the equalities
+
+  const Eigen::VectorXd qdot_new = updated_qdot(m_settings.integrator, h, q_new, m_q, m_q_prev);
+  m_q_prev = m_q;
+  m_qdot_prev = m_qdot;
+  m_q = q_new;
+  m_qdot = qdot_new;
+  m_time += h;
+  ++m_step;
+
+  stats.step = m_step;
+  stats.time = m_time;
+  const Eigen::MatrixX3d x = m_model.surface(m_q);
+  stats.contacts = int(m_barrier.constraints().size());
+  stats.smallest_distance = m_barrier.min_active_distance({m_q, x});
+  stats.kappa = m_barrier.kappa();
+  for (double v : joint_violations(m_constraints, m_q, int(m_model.joints.size())))
+    stats.joint_error = std::max(stats.joint_error, v);
+  if (!m_model.joints.empty()) {
+    for (EnergyTerm* t : terms) t->update({m_q, x});
+    compute_joint_forces(terms, {m_q, x});
+    for (const Eigen::Vector3d& f : m_joint_forces) stats.joint_force = std::max(stats.joint_force, f.norm());
+  }
+  for (int i = 0; i < nodes.size(); ++i) {
+    if (nodes.motion[i] != Motion::Dynamic) continue;
+    const Eigen::Vector3d v = m_qdot.segment<3>(nodes.dof[i]);
+    stats.kinetic_energy += 0.5 * nodes.mass[i] * v.squaredNorm();
+    stats.potential_energy -= nodes.mass[i] * m_settings.gravity.dot(m_q.segment<3>(nodes.dof[i]));
+    stats.linear_momentum += nodes.mass[i] * v;
+  }
+  for (const BodyModel& body : m_model.bodies) {
+    if (body.dof < 0 || body.motion != Motion::Dynamic) continue;
+    const abd::Vector12d qd = m_qdot.segment<12>(body.dof);
+    stats.kinetic_energy += 0.5 * qd.dot(body.M * qd);
+    stats.potential_energy -= body.mass * m_settings.gravity.dot(m_q.segment<3>(body.dof));
+    stats.linear_momentum += body.mass * qd.head<3>();
+    stats.orthogonality_error =
+        std::max(stats.orthogonality_error, abd::orthogonality_error(m_q.segment<12>(body.dof)));
+  }
+  if (!m_elasticity.empty()) {
+    stats.elastic_energy = m_elasticity.value({m_q, x}) /
+                           (integrator_beta(m_settings.integrator) * m_settings.h * m_settings.h);
+    stats.inverted_tets = m_elasticity.inverted_count(m_q);
+  }
+  stats.times = m_times;
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return stats;
+}
+
+SimulationState Simulation::state() const {
+  return {m_time, m_step, m_q, m_qdot, m_q_prev, m_qdot_prev, m_barrier.kappa(), m_barrier.kappa_balanced()};
+}
+
+void Simulation::restore(const SimulationState& s) {
+  const Eigen::Index n = m_q.size();
+  if (s.q.size() != n || s.qdot.size() != n || s.q_prev.size() != n || s.qdot_prev.size() != n)
+    throw std::invalid_argument("Simulation::restore: the state has " + std::to_string(s.q.size()) +
+                                " DOFs, this model " + std::to_string(n));
+  m_time = s.time;
+  m_step = s.step;
+  m_q = s.q;
+  m_qdot = s.qdot;
+  m_q_prev = s.q_prev;
+  m_qdot_prev = s.qdot_prev;
+  m_barrier.restore_stiffness(s.kappa, s.kappa_balanced);
+}
+
+Eigen::VectorXd Simulation::initial_guess(const Eigen::VectorXd& q_tilde, const Configuration& c_n) const {
+  Eigen::VectorXd q_start = q_tilde;
+  for (const BodyModel& body : m_model.bodies) {
+    if (body.dof < 0 || body.motion != Motion::Dynamic) continue;
+    const abd::Vector12d qb = m_q.segment<12>(body.dof);
+    const Eigen::Vector3d omega = abd::angular_velocity(qb, m_qdot.segment<12>(body.dof));
+    q_start.segment<9>(body.dof + 3) = abd::rigid_motion(qb, Eigen::Vector3d::Zero(), omega, m_settings.h).tail<9>();
+  }
+  // Joints: onto their linear equalities (qⁿ satisfies them, so the whole segment does), and
+  // not across a joint limit.
+  if (m_basis) q_start = m_basis->project(q_start);
+  const Eigen::VectorXd dq = q_start - m_q;
+  const Eigen::MatrixX3d dx = m_model.surface_step(dq);
+  double alpha = m_barrier.max_step(c_n, dq, dx);
+  if (!m_joints.empty()) alpha = std::min(alpha, m_joints.max_step(c_n, alpha * dq, alpha * dx) * alpha);
+  return m_q + alpha * dq;
+}
+
+void Simulation::compute_joint_forces(const std::vector<EnergyTerm*>& terms, const Configuration& c) {
+  const int joints = int(m_model.joints.size());
+  m_joint_forces.assign(joints, Eigen::Vector3d::Zero());
+  const double beta_h2 = integrator_beta(m_settings.integrator) * m_settings.h * m_settings.h;
+  if (m_constraints.rows() > 0) {
+    // ∇E = Cᵀ μ over the columns C touches, in the least-squares sense (redundant rows share).
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(m_q.size());
+    for (const EnergyTerm* t : terms) t->add_gradient(c, g);
+    std::vector<int> columns;
+    for (int col = 0; col < m_constraints.C.outerSize(); ++col)
+      if (m_constraints.C.col(col).nonZeros() > 0) columns.push_back(col);
+    Eigen::MatrixXd Ct(columns.size(), m_constraints.rows());
+    Eigen::VectorXd g_t(columns.size());
+    for (std::size_t j = 0; j < columns.size(); ++j) {
+      Ct.row(j) = Eigen::RowVectorXd(m_constraints.C.col(columns[j]).transpose());
+      g_t[j] = g[columns[j]];
+    }
+    const Eigen::VectorXd mu = Ct.completeOrthogonalDecomposition().solve(g_t);
+    for (int i = 0; i + 2 < m_constraints.rows(); i += 3)
+      if (m_constraints.row_is_point[i]) m_joint_forces[m_constraints.row_joint[i]] += mu.segment<3>(i) / beta_h2;
+  }
+  for (const auto& [p, v] : m_joints.potentials()) {
+    if (measure_is_angle(p.measure)) continue;  // a torque, not reported
+    const Eigen::VectorXd y = v.gather(c.q);
+    if (p.inactive(measure(p.measure, y))) continue;
+    const MeasureValue m = measure_derivatives(p.measure, y);
+    m_joint_forces[p.joint] -= p.first_derivative(m.s) * m.grad.head<3>();
+  }
+}
+
+std::vector<Eigen::Vector3d> Simulation::joint_positions() const {
+  std::vector<Eigen::Vector3d> x;
+  for (const JointModel& joint : m_model.joints) x.push_back(end_point(m_model, joint.a, joint.a.anchor).value(m_q));
+  return x;
+}
+
+std::vector<Eigen::Vector3d> Simulation::joint_positions_b() const {
+  std::vector<Eigen::Vector3d> x;
+  for (const JointModel& joint : m_model.joints) x.push_back(end_point(m_model, joint.b, joint.b.anchor).value(m_q));
+  return x;
+}
+
+std::vector<double> Simulation::joint_gaps() const {
+  std::vector<double> gaps(m_model.joints.size(), std::numeric_limits<double>::quiet_NaN());
+  for (const auto& [p, v] : m_joints.potentials()) {
+    if (p.wrap != JointWrap::LowerBarrier && p.wrap != JointWrap::UpperBarrier) continue;
+    const double g = p.gap(measure(p.measure, v.gather(m_q)));
+    if (std::isnan(gaps[p.joint]) || g < gaps[p.joint]) gaps[p.joint] = g;
+  }
+  return gaps;
+}
+
+Eigen::MatrixX3d Simulation::contact_forces() const {
+  const Eigen::MatrixX3d x = m_model.surface(m_q);
+  const double scale = integrator_beta(m_settings.integrator) * m_settings.h * m_settings.h;
+  return m_barrier.vertex_forces({m_q, x}) / scale;
+}
+
+Eigen::MatrixX3d Simulation::friction_forces() const {
+  const Eigen::MatrixX3d x = m_model.surface(m_q);
+  if (!m_friction) return Eigen::MatrixX3d::Zero(x.rows(), 3);
+  const double scale = integrator_beta(m_settings.integrator) * m_settings.h * m_settings.h;
+  return m_friction->vertex_forces({m_q, x}) / scale;
+}
+
+}  // namespace stiffsoft
+
+namespace stiffsoft {
+
+Eigen::MatrixX3d Simulation::node_velocities() const {
+  const SoftNodes& nodes = m_model.nodes;
+  Eigen::MatrixX3d v = Eigen::MatrixX3d::Zero(nodes.size(), 3);
+  for (int i = 0; i < nodes.size(); ++i)
+    if (nodes.dof[i] >= 0) v.row(i) = m_qdot.segment<3>(nodes.dof[i]).transpose();
+  return v;
+}
+
+Eigen::VectorXd Simulation::von_mises() const { return m_elasticity.von_mises(m_q); }
+
+}  // namespace stiffsoft

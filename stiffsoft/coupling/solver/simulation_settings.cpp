@@ -1,0 +1,57 @@
+#include <stiffsoft/coupling/solver/simulation_settings.hpp>
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include <stiffsoft/coupling/linear_solver/linear_solver.hpp>
+
+namespace stiffsoft {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& setting, const std::string& expected, double got) {
+  std::ostringstream os;
+  os << "SimulationSettings." << setting << ": " << expected << " (got " << got << ")";
+  throw std::invalid_argument(os.str());
+}
+
+void positive(const std::string& setting, double value) {
+  if (!std::isfinite(value) || value <= 0) fail(setting, "must be > 0 and finite", value);
+}
+
+void non_negative(const std::string& setting, double value) {
+  if (!std::isfinite(value) || value < 0) fail(setting, "must be ≥ 0 and finite", value);
+}
+
+}  // namespace
+
+void validate(const SimulationSettings& s) {
+  positive("h", s.h);
+  for (int i = 0; i < 3; ++i)
+    if (!std::isfinite(s.gravity[i])) fail("gravity", "must be finite", s.gravity[i]);
+  positive("dhat", s.dhat);
+  non_negative("mu", s.mu);
+  positive("eps_v", s.eps_v);
+  if (s.kappa) positive("kappa", *s.kappa);
+  positive("tolerance", s.tolerance);
+  if (s.max_iterations < 1) fail("max_iterations", "must be ≥ 1", s.max_iterations);
+  try {
+    check_linear_solver_name(s.linear_solver);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("SimulationSettings.linear_solver: ") + e.what());
+  }
+  if (!(s.krylov_rtol_max > 0 && s.krylov_rtol_max < 1))
+    fail("krylov_rtol_max", "must be in (0, 1)", s.krylov_rtol_max);
+  positive("kinematic_weight", s.kinematic_weight);
+  non_negative("contact_damping", s.contact_damping);
+  for (std::size_t k = 0; k < s.contact_pair_damping.size(); ++k) {
+    const ContactPairDamping& p = s.contact_pair_damping[k];
+    const std::string at = "contact_pair_damping[" + std::to_string(k) + "]";
+    if (p.body_a < 0) fail(at + ".body_a", "must be a body index ≥ 0", p.body_a);
+    if (p.body_b < 0) fail(at + ".body_b", "must be a body index ≥ 0", p.body_b);
+    non_negative(at + ".damping", p.damping);
+  }
+}
+
+}  // namespace stiffsoft

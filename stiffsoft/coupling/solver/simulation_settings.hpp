@@ -1,0 +1,41 @@
+#pragma once
+/// @file What drives the time stepping of a Simulation, and the check that it makes sense.
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <stiffsoft/coupling/solver/integrator.hpp>
+#include <stiffsoft/coupling/solver/newton.hpp>
+#include <stiffsoft/coupling/terms/damping_term.hpp>
+
+namespace stiffsoft {
+
+/// Everything that drives the time stepping, in SI units, already resolved (no relative
+/// defaults left: the scene loader turns those into numbers).
+struct SimulationSettings {
+  double h = NewtonSettings{}.h;                  ///< time step (s)
+  Integrator integrator = Integrator::BackwardEuler;
+  Eigen::Vector3d gravity{0, -9.81, 0};           ///< m/s²
+  double dhat = 1e-3;                             ///< barrier activation distance d̂ (m)
+  double mu = 0;                                  ///< friction coefficient; 0: no friction term at all
+  double eps_v = 1e-3;                            ///< friction smoothing speed ε_v (m/s)
+  std::optional<double> kappa;                    ///< fixed barrier stiffness; unset: adaptive
+  double tolerance = NewtonSettings{}.tolerance;  ///< Newton's ε_d (m/s)
+  int max_iterations = NewtonSettings{}.max_iterations;  ///< Newton iteration cap per step
+  std::string linear_solver = "auto";             ///< linear solver backend (see make_linear_solver())
+  double krylov_rtol_max = ForcingTermSettings{}.eta_max;  ///< largest relative residual a Krylov solve may stop at (η_max)
+  double kinematic_weight = 1e4;                  ///< inertia weight pulling kinematic bodies onto their path
+  double contact_damping = 0;                     ///< lagged Rayleigh damping k_d of contacts (s); 0: none
+  std::vector<ContactPairDamping> contact_pair_damping;  ///< k_d per body pair, replacing contact_damping there
+};
+
+/// Checks code-built settings as the scene loader checks a scene file: h, d̂, ε_v, ε_d,
+/// kinematic_weight > 0 and finite, μ and contact damping ≥ 0, κ > 0 when set,
+/// max_iterations ≥ 1, krylov_rtol_max in (0, 1), gravity finite, a known linear solver, pair
+/// damping on bodies ≥ 0 with k_d ≥ 0. Throws std::invalid_argument naming the first bad
+/// setting and what was expected (`SimulationSettings.dhat: must be > 0 (got -1)`).
+void validate(const SimulationSettings& settings);
+
+}  // namespace stiffsoft

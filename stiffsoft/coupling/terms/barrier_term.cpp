@@ -1,0 +1,167 @@
+#include <stiffsoft/coupling/terms/barrier_term.hpp>
+
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <stiffsoft/coupling/ccd/ccd.hpp>
+#include <stiffsoft/coupling/model/stencil_jacobian.hpp>
+
+namespace stiffsoft {
+
+namespace {
+/// κ_min of IPC (ipc-toolkit, initial_barrier_stiffness): the stiffness at which the barrier's
+/// curvature at d = 1e-8 × diagonal balances 1e11 × the average mass.
+double kappa_min(const BarrierSettings& s) {
+  const double d0 = std::pow(1e-8 * s.bbox_diagonal, 2);
+  const double curvature = 4 * d0 * contact::barrier_second_derivative(d0, s.dhat);
+  return 1e11 * s.average_mass / curvature;
+}
+}  // namespace
+
+BarrierTerm::BarrierTerm(const Model& model, const BarrierSettings& settings, PhaseTimes* times)
+    : m_model(model), m_settings(settings), m_times(times) {
+  m_kappa = settings.kappa ? *settings.kappa : kappa_min(settings);
+  m_kappa_max = settings.kappa ? *settings.kappa : 100 * m_kappa;
+}
+
+void BarrierTerm::update(const Configuration& c) {
+  double dummy = 0;
+  ScopedTimer timer(m_times ? m_times->broad_phase : dummy);
+  if (m_swept && m_swept->covers(c.x)) {
+    m_constraints = build_constraints(m_model, c.x, m_swept->all(), m_settings.dhat);
+    return;
+  }
+  const Candidates candidates = broad_phase(m_model, c.x, c.x, 0.5 * m_settings.dhat);
+  m_constraints = build_constraints(m_model, c.x, candidates, m_settings.dhat);
+}
+
+double BarrierTerm::value(const Configuration& c) const {
+  // Deterministic: the same run gives the same energies, bit for bit, whatever the schedule.
+  const double sum = tbb::parallel_deterministic_reduce(
+      tbb::blocked_range<size_t>(0, m_constraints.size()), 0.0,
+      [&](const tbb::blocked_range<size_t>& r, double acc) {
+        for (size_t k = r.begin(); k < r.end(); ++k)
+          acc += m_constraints[k].weight * contact::barrier_potential(m_constraints[k].stencil,
+                                                                      gather(c.x, m_constraints[k].vertices),
+                                                                      m_settings.dhat);
+        return acc;
+      },
+      std::plus<>());
+  return m_kappa * sum;
+}
+
+void BarrierTerm::add_gradient(const Configuration& c, Eigen::VectorXd& g) const {
+  for (const ContactConstraint& k : m_constraints) {
+    const contact::Vector12d gx = m_kappa * k.weight *
+                                  contact::barrier_potential_gradient(k.stencil, gather(c.x, k.vertices), m_settings.dhat);
+    StencilJacobian(m_model, k.vertices).scatter_gradient(gx, g);
+  }
+}
+
+void BarrierTerm::add_hessian(const Configuration& c, BlockHessian& H) const {
+  // The 12×12 eigen-decompositions dominate: do them in parallel, scatter serially.
+  std::vector<contact::Matrix12d> local(m_constraints.size());
+  tbb::parallel_for(size_t(0), m_constraints.size(), [&](size_t k) {
+    local[k] = m_kappa * m_constraints[k].weight * contact::barrier_potential_hessian(m_constraints[k].stencil,
+                                                            gather(c.x, m_constraints[k].vertices),
+                                                            m_settings.dhat, true);
+  });
+  for (size_t k = 0; k < m_constraints.size(); ++k)
+    StencilJacobian(m_model, m_constraints[k].vertices).scatter_hessian(local[k], H);
+}
+
+double BarrierTerm::max_step(const Configuration& c, const Eigen::VectorXd&, const Eigen::MatrixX3d& dx) const {
+  double dummy = 0;
+  ScopedTimer timer(m_times ? m_times->ccd : dummy);
+  const Eigen::MatrixX3d x1 = c.x + dx;
+  // One broad phase for the CCD and every line-search trial of this direction (update()).
+  m_swept.emplace(m_model, c.x, x1, 0.5 * m_settings.dhat, 0.01 * m_settings.dhat);
+  const Candidates candidates = m_swept->for_ccd(m_model);
+  const CollisionMesh& mesh = m_model.mesh;
+  const auto row = [](const Eigen::MatrixX3d& m, int i) -> Eigen::Vector3d { return m.row(i).transpose(); };
+  // Each chunk bounds its queries by the smallest time found so far (t_max = α), and the time
+  // ACCD returns depends on that bound; a deterministic reduction splits the work the same
+  // way whatever the thread schedule, so the step bound, and the run, are reproducible.
+  const double alpha_vf = tbb::parallel_deterministic_reduce(
+      tbb::blocked_range<size_t>(0, candidates.vertex_face.size()), 1.0,
+      [&](const tbb::blocked_range<size_t>& r, double alpha) {
+        ccd::CcdSettings s;
+        for (size_t k = r.begin(); k < r.end() && alpha > 0; ++k) {  // α = 0: nothing can lower it
+          const auto [v, f] = candidates.vertex_face[k];
+          s.t_max = alpha;
+          alpha = std::min(alpha, ccd::point_triangle_toi(
+                                      row(c.x, v), row(c.x, mesh.F(f, 0)), row(c.x, mesh.F(f, 1)),
+                                      row(c.x, mesh.F(f, 2)), row(x1, v), row(x1, mesh.F(f, 0)),
+                                      row(x1, mesh.F(f, 1)), row(x1, mesh.F(f, 2)), s));
+        }
+        return alpha;
+      },
+      [](double a, double b) { return std::min(a, b); });
+  const double alpha_ee = tbb::parallel_deterministic_reduce(
+      tbb::blocked_range<size_t>(0, candidates.edge_edge.size()), alpha_vf,
+      [&](const tbb::blocked_range<size_t>& r, double alpha) {
+        ccd::CcdSettings s;
+        for (size_t k = r.begin(); k < r.end() && alpha > 0; ++k) {
+          const auto [ea, eb] = candidates.edge_edge[k];
+          s.t_max = alpha;
+          alpha = std::min(alpha, ccd::edge_edge_toi(
+                                      row(c.x, mesh.E(ea, 0)), row(c.x, mesh.E(ea, 1)),
+                                      row(c.x, mesh.E(eb, 0)), row(c.x, mesh.E(eb, 1)),
+                                      row(x1, mesh.E(ea, 0)), row(x1, mesh.E(ea, 1)),
+                                      row(x1, mesh.E(eb, 0)), row(x1, mesh.E(eb, 1)), s));
+        }
+        return alpha;
+      },
+      [](double a, double b) { return std::min(a, b); });
+  return alpha_ee;
+}
+
+double BarrierTerm::min_active_distance(const Configuration& c) const {
+  double d2 = std::numeric_limits<double>::infinity();
+  for (const ContactConstraint& k : m_constraints)
+    d2 = std::min(d2, contact::stencil_squared_distance(k.stencil, gather(c.x, k.vertices)));
+  return std::sqrt(d2);
+}
+
+void BarrierTerm::end_iteration(const Configuration& c) {
+  if (m_settings.kappa) return;
+  const double d = min_active_distance(c);
+  const double eps = 1e-9 * m_settings.bbox_diagonal;
+  if (m_prev_min_distance >= 0 && m_prev_min_distance < eps && d < eps && d < m_prev_min_distance)
+    m_kappa = std::min(m_kappa_max, 2 * m_kappa);
+  m_prev_min_distance = d;
+}
+
+void BarrierTerm::initialize_stiffness(const Configuration& c, const Eigen::VectorXd& grad_other) {
+  m_prev_min_distance = -1;
+  // Balance once, when contact first appears; re-balancing every step would change the force
+  // at a given distance from one step to the next (and with it the lagged friction).
+  if (m_settings.kappa || m_constraints.empty() || m_balanced) return;
+  m_balanced = true;
+  const double saved = m_kappa;
+  m_kappa = 1.0;
+  Eigen::VectorXd grad_barrier = Eigen::VectorXd::Zero(grad_other.size());
+  add_gradient(c, grad_barrier);
+  const double k_min = m_kappa_max / 100;
+  m_kappa = saved;
+  if (grad_barrier.squaredNorm() <= 0) return;
+  const double balanced = -grad_barrier.dot(grad_other) / grad_barrier.squaredNorm();
+  m_kappa = std::clamp(balanced, k_min, m_kappa_max);
+}
+
+Eigen::MatrixX3d BarrierTerm::vertex_forces(const Configuration& c) const {
+  Eigen::MatrixX3d f = Eigen::MatrixX3d::Zero(c.x.rows(), 3);
+  for (const ContactConstraint& k : m_constraints) {
+    const contact::Vector12d gx = m_kappa * k.weight *
+                                  contact::barrier_potential_gradient(k.stencil, gather(c.x, k.vertices), m_settings.dhat);
+    for (int i = 0; i < 4; ++i)
+      if (k.vertices[i] >= 0) f.row(k.vertices[i]) -= gx.segment<3>(3 * i).transpose();
+  }
+  return f;
+}
+
+}  // namespace stiffsoft

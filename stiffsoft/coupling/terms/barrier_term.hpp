@@ -1,0 +1,80 @@
+#pragma once
+/// @file κ Σ_k b(d_k(x), d̂): the IPC contact barrier over all active stencils (Li et al. 2020),
+/// with CCD-bounded steps and IPC's adaptive barrier stiffness.
+
+#include <optional>
+#include <vector>
+
+#include <stiffsoft/coupling/contact/constraint_set.hpp>
+#include <stiffsoft/coupling/solver/phase_times.hpp>
+#include <stiffsoft/coupling/contact/swept_candidates.hpp>
+#include <stiffsoft/coupling/terms/energy_term.hpp>
+
+namespace stiffsoft {
+
+/// Settings of the contact barrier.
+struct BarrierSettings {
+  double dhat = 1e-3;               ///< activation distance d̂ (m)
+  std::optional<double> kappa;      ///< fixed barrier stiffness; unset: adaptive (IPC's rule)
+  double bbox_diagonal = 1.0;       ///< scene size (m), for the adaptive rule's thresholds
+  double average_mass = 1.0;        ///< average dynamic body mass (kg), for κ_min
+};
+
+/// The contact barrier term.
+class BarrierTerm final : public EnergyTerm {
+ public:
+  /// `times` receives broad-phase and CCD seconds (may be null).
+  BarrierTerm(const Model& model, const BarrierSettings& settings, PhaseTimes* times);
+  /// See EnergyTerm::name.
+  const char* name() const override { return "barrier"; }
+  /// Rebuilds candidates and active contacts at c.x.
+  void update(const Configuration& c) override;
+  /// See EnergyTerm::value.
+  double value(const Configuration& c) const override;
+  /// See EnergyTerm::add_gradient.
+  void add_gradient(const Configuration& c, Eigen::VectorXd& g) const override;
+  /// See EnergyTerm::add_hessian.
+  void add_hessian(const Configuration& c, BlockHessian& H) const override;
+  /// Conservative CCD over the straight-line motion x → x + dx; its broad phase (grown by
+  /// d̂/2) is kept for update() on the same segment.
+  double max_step(const Configuration& c, const Eigen::VectorXd& dq, const Eigen::MatrixX3d& dx) const override;
+  /// IPC's adaptive rule: double κ (up to κ_max) while the smallest distance keeps shrinking
+  /// below 1e-9 × diagonal.
+  void end_iteration(const Configuration& c) override;
+
+  /// IPC's initial κ by gradient balancing, clamped to [κ_min, 100 κ_min]: κ = −∇E·∇B / ‖∇B‖²,
+  /// where ∇E is the gradient of the other terms at the step's start. Acts once, at the first
+  /// step that starts with active contacts; no-op with a fixed κ.
+  void initialize_stiffness(const Configuration& c, const Eigen::VectorXd& grad_other);
+  /// Current κ (J/m⁴ in squared-distance units, i.e. κ b has units of energy).
+  double kappa() const { return m_kappa; }
+  /// Whether initialize_stiffness has balanced κ already (it does so once per run).
+  bool kappa_balanced() const { return m_balanced; }
+  /// Continues a run from a saved κ and balance flag (Simulation::restore).
+  void restore_stiffness(double kappa, bool balanced) {
+    m_kappa = kappa;
+    m_balanced = balanced;
+  }
+  /// Active contacts at the last update.
+  const std::vector<ContactConstraint>& constraints() const { return m_constraints; }
+  /// Smallest distance among active contacts at the last update (m), +∞ with none.
+  double min_active_distance(const Configuration& c) const;
+  /// Barrier force −κ ∇_x B on every surface vertex, |V|×3 (in energy units; divide by β h² for N).
+  Eigen::MatrixX3d vertex_forces(const Configuration& c) const;
+  /// The activation distance d̂ (m).
+  double dhat() const { return m_settings.dhat; }
+
+ private:
+  const Model& m_model;
+  BarrierSettings m_settings;
+  PhaseTimes* m_times;
+  double m_kappa;
+  double m_kappa_max;
+  double m_prev_min_distance = -1;
+  bool m_balanced = false;
+  std::vector<ContactConstraint> m_constraints;
+  /// Candidates of the last direction max_step bounded, reused by update() on that segment.
+  mutable std::optional<SweptCandidates> m_swept;
+};
+
+}  // namespace stiffsoft

@@ -1,0 +1,47 @@
+#pragma once
+/// @file β h² Σ_e V_e ψ(F_e): the elastic energy of the soft bodies' tetrahedra (libfem).
+
+#include <memory>
+#include <vector>
+
+#include <stiffsoft/coupling/model/model.hpp>
+#include <stiffsoft/coupling/terms/energy_term.hpp>
+#include <stiffsoft/libfem/elastic_energy.hpp>
+
+namespace stiffsoft {
+
+/// The elastic energies of all soft bodies, scaled by β h²; fixed nodes enter at their rest
+/// positions and receive no gradient. Hessians are projected to PSD per element.
+class ElasticityTerm final : public EnergyTerm {
+ public:
+  /// One libfem::ElasticEnergy per soft body; `scale` is β h² (s²).
+  ElasticityTerm(const Model& model, double scale);
+  /// See EnergyTerm::name.
+  const char* name() const override { return "elasticity"; }
+  /// See EnergyTerm::value.
+  double value(const Configuration& c) const override;
+  /// See EnergyTerm::add_gradient.
+  void add_gradient(const Configuration& c, Eigen::VectorXd& g) const override;
+  /// See EnergyTerm::add_hessian.
+  void add_hessian(const Configuration& c, BlockHessian& H) const override;
+  /// True when the model has no soft body (the term can be left out).
+  bool empty() const { return m_bodies.empty(); }
+  /// Von Mises stress of every tetrahedron of the model, in Model::nodes.T order (Pa).
+  Eigen::VectorXd von_mises(const Eigen::VectorXd& q) const;
+  /// Number of inverted tetrahedra (det F ≤ 0) at q.
+  int inverted_count(const Eigen::VectorXd& q) const;
+
+ private:
+  struct SoftBody {
+    int node_begin;
+    std::unique_ptr<fem::ElasticEnergy> energy;
+  };
+  /// The body's node positions from q, flattened node-major (3N).
+  Eigen::VectorXd body_positions(const SoftBody& body, const Eigen::VectorXd& q) const;
+
+  const Model& m_model;
+  double m_scale;
+  std::vector<SoftBody> m_bodies;
+};
+
+}  // namespace stiffsoft

@@ -1,0 +1,42 @@
+#pragma once
+/// @file What Newton sees: a list of energy terms over the DOF vector q, each with value,
+/// gradient, Hessian (projected PSD), a CCD step bound and per-configuration hooks
+/// (PolyFEM's "forms"). Newton never knows which kind of body a DOF belongs to.
+
+#include <Eigen/Core>
+
+#include <stiffsoft/coupling/model/block_hessian.hpp>
+
+namespace stiffsoft {
+
+/// A configuration: DOFs and the surface points they place.
+struct Configuration {
+  const Eigen::VectorXd& q;   ///< DOFs, 12 per non-fixed body
+  const Eigen::MatrixX3d& x;  ///< surface points x(q), |V|×3, m
+};
+
+/// One additive term of the incremental potential E(q).
+class EnergyTerm {
+ public:
+  virtual ~EnergyTerm() = default;
+  /// Short name for logs.
+  virtual const char* name() const = 0;
+  /// Called whenever the configuration changes (line-search trial, accepted iterate) before
+  /// any evaluation there: rebuild configuration-dependent sets (e.g. active contacts).
+  virtual void update(const Configuration&) {}
+  /// E_term(q).
+  virtual double value(const Configuration& c) const = 0;
+  /// g += ∇E_term(q).
+  virtual void add_gradient(const Configuration& c, Eigen::VectorXd& g) const = 0;
+  /// H += PSD projection of ∇²E_term(q), stencil by stencil.
+  virtual void add_hessian(const Configuration& c, BlockHessian& H) const = 0;
+  /// Largest α ∈ [0, 1] such that q + t·dq is admissible for all t ∈ [0, α]; dx = Φ dq.
+  virtual double max_step(const Configuration&, const Eigen::VectorXd& /*dq*/,
+                          const Eigen::MatrixX3d& /*dx*/) const {
+    return 1.0;
+  }
+  /// After each accepted Newton iteration (e.g. adapt the barrier stiffness).
+  virtual void end_iteration(const Configuration&) {}
+};
+
+}  // namespace stiffsoft

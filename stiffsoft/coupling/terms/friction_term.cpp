@@ -1,0 +1,60 @@
+#include <stiffsoft/coupling/terms/friction_term.hpp>
+
+#include <tbb/parallel_for.h>
+
+#include <stiffsoft/coupling/model/stencil_jacobian.hpp>
+
+namespace stiffsoft {
+
+FrictionTerm::FrictionTerm(const Model& model, double mu, double epsv_h)
+    : m_model(model), m_mu(mu), m_epsv_h(epsv_h) {}
+
+void FrictionTerm::lag(const Configuration& c, const BarrierTerm& barrier) {
+  m_x_lag = c.x;
+  m_stencils.clear();
+  m_vertices.clear();
+  for (const ContactConstraint& k : barrier.constraints()) {
+    m_stencils.push_back(contact::make_friction_stencil(k.stencil, gather(c.x, k.vertices),
+                                                        barrier.dhat(), barrier.kappa() * k.weight));
+    m_vertices.push_back(k.vertices);
+  }
+}
+
+contact::Vector12d FrictionTerm::displacement(const Configuration& c, size_t k) const {
+  return gather(c.x, m_vertices[k]) - gather(m_x_lag, m_vertices[k]);
+}
+
+double FrictionTerm::value(const Configuration& c) const {
+  double e = 0;
+  for (size_t k = 0; k < m_stencils.size(); ++k)
+    e += contact::friction_potential(m_stencils[k], displacement(c, k), m_mu, m_epsv_h);
+  return e;
+}
+
+void FrictionTerm::add_gradient(const Configuration& c, Eigen::VectorXd& g) const {
+  for (size_t k = 0; k < m_stencils.size(); ++k)
+    StencilJacobian(m_model, m_vertices[k])
+        .scatter_gradient(contact::friction_potential_gradient(m_stencils[k], displacement(c, k), m_mu, m_epsv_h), g);
+}
+
+void FrictionTerm::add_hessian(const Configuration& c, BlockHessian& H) const {
+  std::vector<contact::Matrix12d> local(m_stencils.size());
+  tbb::parallel_for(size_t(0), m_stencils.size(), [&](size_t k) {
+    local[k] = contact::friction_potential_hessian(m_stencils[k], displacement(c, k), m_mu, m_epsv_h, true);
+  });
+  for (size_t k = 0; k < m_stencils.size(); ++k)
+    StencilJacobian(m_model, m_vertices[k]).scatter_hessian(local[k], H);
+}
+
+Eigen::MatrixX3d FrictionTerm::vertex_forces(const Configuration& c) const {
+  Eigen::MatrixX3d f = Eigen::MatrixX3d::Zero(c.x.rows(), 3);
+  for (size_t k = 0; k < m_stencils.size(); ++k) {
+    const contact::Vector12d g =
+        contact::friction_potential_gradient(m_stencils[k], displacement(c, k), m_mu, m_epsv_h);
+    for (int i = 0; i < 4; ++i)
+      if (m_vertices[k][i] >= 0) f.row(m_vertices[k][i]) -= g.segment<3>(3 * i).transpose();
+  }
+  return f;
+}
+
+}  // namespace stiffsoft

@@ -1,0 +1,43 @@
+#pragma once
+/// @file Lagged smoothed friction (Li et al. 2020, §5): D(x) = Σ_k μ λ_k f₀(‖u_k‖), with normal
+/// forces λ_k and tangent bases lagged at the step's start and u_k the tangential relative
+/// displacement over the step. Only built when μ > 0.
+
+#include <vector>
+
+#include <stiffsoft/coupling/contact/friction.hpp>
+#include <stiffsoft/coupling/terms/barrier_term.hpp>
+
+namespace stiffsoft {
+
+/// The friction term of one time step.
+class FrictionTerm final : public EnergyTerm {
+ public:
+  /// μ ≥ 0 and ε_v h (m): the tangential displacement below which static friction is smoothed.
+  FrictionTerm(const Model& model, double mu, double epsv_h);
+  /// See EnergyTerm::name.
+  const char* name() const override { return "friction"; }
+  /// Lags normal forces and bases from the barrier's active set at the start-of-step
+  /// configuration c (whose surface x becomes xⁿ).
+  void lag(const Configuration& c, const BarrierTerm& barrier);
+  /// See EnergyTerm::value.
+  double value(const Configuration& c) const override;
+  /// See EnergyTerm::add_gradient.
+  void add_gradient(const Configuration& c, Eigen::VectorXd& g) const override;
+  /// See EnergyTerm::add_hessian.
+  void add_hessian(const Configuration& c, BlockHessian& H) const override;
+  /// Friction force −∇_x D on every surface vertex, |V|×3 (energy units, as the barrier's).
+  Eigen::MatrixX3d vertex_forces(const Configuration& c) const;
+  /// Number of lagged friction stencils.
+  size_t size() const { return m_stencils.size(); }
+
+ private:
+  contact::Vector12d displacement(const Configuration& c, size_t k) const;
+  const Model& m_model;
+  double m_mu, m_epsv_h;
+  Eigen::MatrixX3d m_x_lag;
+  std::vector<contact::FrictionStencil> m_stencils;
+  std::vector<std::array<int, 4>> m_vertices;
+};
+
+}  // namespace stiffsoft

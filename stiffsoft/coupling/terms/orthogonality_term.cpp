@@ -1,0 +1,32 @@
+#include <stiffsoft/coupling/terms/orthogonality_term.hpp>
+
+#include <stiffsoft/libabd/orthogonality_potential.hpp>
+
+namespace stiffsoft {
+
+OrthogonalityTerm::OrthogonalityTerm(const Model& model, double scale) {
+  for (const BodyModel& body : model.bodies)
+    if (body.representation == Representation::Affine && body.motion == Motion::Dynamic)
+      m_bodies.push_back({body.block, body.dof, scale * body.kappa * body.volume});
+}
+
+double OrthogonalityTerm::value(const Configuration& c) const {
+  double e = 0;
+  for (const Body& b : m_bodies)
+    e += abd::orthogonality_potential(c.q.segment<12>(b.dof), b.kappa_volume, 1.0);
+  return e;
+}
+
+void OrthogonalityTerm::add_gradient(const Configuration& c, Eigen::VectorXd& g) const {
+  for (const Body& b : m_bodies)
+    g.segment<12>(b.dof) +=
+        abd::orthogonality_potential_gradient(c.q.segment<12>(b.dof), b.kappa_volume, 1.0);
+}
+
+void OrthogonalityTerm::add_hessian(const Configuration& c, BlockHessian& H) const {
+  for (const Body& b : m_bodies)
+    H.add(b.block, b.block,
+          abd::orthogonality_potential_hessian(c.q.segment<12>(b.dof), b.kappa_volume, 1.0, true));
+}
+
+}  // namespace stiffsoft

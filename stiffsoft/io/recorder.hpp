@@ -1,0 +1,68 @@
+#pragma once
+/// @file Everything `stiffsoft run` writes, for any program that steps a Simulation: the
+/// ParaView series, `stats.csv`, `bodies.csv`, the joints' output and the resolved scene.
+///
+///     stiffsoft::SceneSimulation run = stiffsoft::make_simulation("scenes/default.json");
+///     stiffsoft::Recorder recorder("out/default", run.scene, run.simulation);
+///     for (int k = 0; k < 100; ++k) recorder.record(run.simulation.step(), k + 1 == 100);
+///     recorder.finish();
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <optional>
+
+#include <stiffsoft/coupling/solver/simulation.hpp>
+#include <stiffsoft/io/body_state_writer.hpp>
+#include <stiffsoft/io/frame_writer.hpp>
+#include <stiffsoft/io/joint_frame_writer.hpp>
+#include <stiffsoft/io/stats_writer.hpp>
+#include <stiffsoft/scene/scene.hpp>
+
+namespace stiffsoft {
+
+/// Writes one run into a folder (every file atomically, so a killed run leaves whole files):
+/// - `NAME.pvd` + `frames/NAME_NNNNNN.vtm`: a frame at t = 0, then every `output.frame_dt`
+///   of simulated time and after the last step (io/frame_writer.hpp);
+/// - `stats.csv`: one row per step, the columns of step_stats_columns();
+/// - `bodies.csv`: every body's state at t = 0 and after every step (io/body_state_writer.hpp);
+/// - with joints, `joints.csv` (per frame: each joint's anchor and force on body a) and
+///   `NAME_joints.pvd` + `frames/NAME_joints_NNNNNN.vtp` (io/joint_frame_writer.hpp);
+/// - `scene.resolved.json`: the scene with every default filled in.
+/// Files are flushed at every frame (bodies.csv only while under 8 MiB; then at finish()).
+class Recorder {
+ public:
+  /// Creates `out`, writes `scene.resolved.json` and the frame at the simulation's present
+  /// state. `scene` is the resolved scene `sim` was made from (SceneSimulation::scene); `sim`
+  /// must outlive the recorder.
+  Recorder(const std::filesystem::path& out, const SceneDescription& scene, const Simulation& sim);
+  Recorder(const Recorder&) = delete;
+  Recorder& operator=(const Recorder&) = delete;
+
+  /// Records the step `s` the simulation has just taken; writes a frame when one is due or
+  /// when `last` is true.
+  void record(const StepStats& s, bool last = false);
+  /// Flushes what is not on disk yet (stats.csv, bodies.csv).
+  void finish();
+  /// Frames written so far.
+  int frame_count() const { return m_frames.frame_count(); }
+  /// OUT/NAME.pvd.
+  std::filesystem::path pvd_path() const { return m_frames.pvd_path(); }
+
+  /// The columns of `joints.csv`.
+  static const std::vector<std::string>& joint_columns();
+
+ private:
+  void write_frame(int step);
+
+  const Simulation& m_sim;
+  Eigen::MatrixX3d m_x0;  ///< the surface at the first frame, for displacements
+  double m_frame_dt;
+  double m_next_frame;
+  FrameWriter m_frames;
+  StatsWriter m_stats;
+  BodyStateWriter m_bodies;
+  std::optional<StatsWriter> m_joints;
+  std::optional<JointFrameWriter> m_joint_frames;
+};
+
+}  // namespace stiffsoft

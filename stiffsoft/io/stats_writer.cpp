@@ -1,0 +1,61 @@
+#include <stiffsoft/io/stats_writer.hpp>
+
+#include <charconv>
+#include <iostream>
+#include <stdexcept>
+
+#include <stiffsoft/io/atomic_file.hpp>
+
+namespace stiffsoft {
+
+StatsWriter::StatsWriter(std::filesystem::path file, std::vector<std::string> columns)
+    : file_(std::move(file)), columns_(std::move(columns)) {
+  if (columns_.empty()) {
+    throw std::invalid_argument("stats file '" + file_.string() + "': no columns given");
+  }
+  for (const std::string& column : columns_) {
+    if (column.empty() || column.find_first_of(",\"\r\n") != std::string::npos) {
+      throw std::invalid_argument("stats file '" + file_.string() + "': column name '" + column +
+                                  "' is empty or contains ',', '\"' or a line break");
+    }
+  }
+}
+
+StatsWriter::~StatsWriter() {
+  if (!dirty_) return;
+  try {
+    flush();
+  } catch (const std::exception& e) {
+    std::cerr << "stiffsoft: " << e.what() << '\n';
+  }
+}
+
+void StatsWriter::add_row(const std::vector<double>& values) {
+  if (values.size() != columns_.size()) {
+    throw std::invalid_argument("stats file '" + file_.string() + "': row has " +
+                                std::to_string(values.size()) + " values, expected " +
+                                std::to_string(columns_.size()));
+  }
+  // Formatting now keeps flush() a plain copy; to_chars gives the shortest round-trip text.
+  char buffer[32];
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (i > 0) rows_ += ',';
+    const auto result = std::to_chars(buffer, buffer + sizeof(buffer), values[i]);
+    rows_.append(buffer, result.ptr);
+  }
+  rows_ += '\n';
+  ++row_count_;
+  dirty_ = true;
+}
+
+void StatsWriter::flush() {
+  write_file_atomically(file_, [&](std::ostream& out) {
+    for (std::size_t i = 0; i < columns_.size(); ++i) out << (i > 0 ? "," : "") << columns_[i];
+    out << '\n' << rows_;
+  });
+  dirty_ = false;
+}
+
+std::size_t StatsWriter::row_count() const { return row_count_; }
+
+}  // namespace stiffsoft

@@ -1,0 +1,72 @@
+#include <stiffsoft/libfem/tet_element.hpp>
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include <stiffsoft/libfem/format_number.hpp>
+
+namespace stiffsoft::fem {
+
+TetElement make_tet_element(const Vector12d& X, int index) {
+  const Eigen::Matrix3d D_m = deformed_shape_matrix(X);
+  double longest = 0;
+  for (int a = 0; a < 4; ++a)
+    for (int b = a + 1; b < 4; ++b)
+      longest = std::max(longest, (X.segment<3>(3 * b) - X.segment<3>(3 * a)).norm());
+  const double volume = std::abs(D_m.determinant()) / 6;
+  // Scale-free test: a sliver with V ≤ 1e-12 ℓ³ has a D_m whose inverse is numerically meaningless.
+  if (!(volume > 1e-12 * longest * longest * longest))
+    throw std::invalid_argument("libfem: tetrahedron " + std::to_string(index) +
+                                " is degenerate: rest volume " + format_number(volume) +
+                                " m^3 with longest edge " + format_number(longest) +
+                                " m; expected a volume > 1e-12 * edge^3");
+  return {D_m.inverse(), volume};
+}
+
+Eigen::Matrix3d deformed_shape_matrix(const Vector12d& x) {
+  Eigen::Matrix3d D;
+  for (int a = 0; a < 3; ++a) D.col(a) = x.segment<3>(3 * (a + 1)) - x.segment<3>(0);
+  return D;
+}
+
+Eigen::Matrix3d deformation_gradient(const TetElement& element, const Vector12d& x) {
+  return deformed_shape_matrix(x) * element.D_m_inv;
+}
+
+Matrix9x12d deformation_gradient_jacobian(const TetElement& element) {
+  const Eigen::Matrix3d& B = element.D_m_inv;
+  const Eigen::RowVector3d b0 = -B.colwise().sum();
+  Matrix9x12d dFdx = Matrix9x12d::Zero();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      dFdx(i + 3 * j, i) = b0(j);
+      for (int a = 1; a < 4; ++a) dFdx(i + 3 * j, 3 * a + i) = B(a - 1, j);
+    }
+  return dFdx;
+}
+
+double tet_energy(const TetElement& element, const Material& material, const Vector12d& x) {
+  return element.volume * material.psi(deformation_gradient(element, x));
+}
+
+Vector12d tet_gradient(const TetElement& element, const Material& material, const Vector12d& x) {
+  const Eigen::Matrix3d P = material.P(deformation_gradient(element, x));
+  // ∂(Vψ)/∂x_a = V P D_m⁻ᵀ e_{a−1} for a = 1..3; node 0 balances the other three.
+  const Eigen::Matrix3d H = element.volume * P * element.D_m_inv.transpose();
+  Vector12d g;
+  g.segment<3>(0) = -H.rowwise().sum();
+  for (int a = 1; a < 4; ++a) g.segment<3>(3 * a) = H.col(a - 1);
+  return g;
+}
+
+Matrix12d tet_hessian(const TetElement& element, const Material& material, const Vector12d& x,
+                      bool project_psd) {
+  const Matrix9d dPdF = material.dPdF(deformation_gradient(element, x), project_psd);
+  const Matrix9x12d dFdx = deformation_gradient_jacobian(element);
+  return element.volume * dFdx.transpose() * dPdF * dFdx;
+}
+
+}  // namespace stiffsoft::fem

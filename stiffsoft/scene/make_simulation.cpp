@@ -1,0 +1,82 @@
+#include <stiffsoft/scene/make_simulation.hpp>
+
+#include <algorithm>
+#include <stdexcept>
+
+#include <stiffsoft/scene/scene_builder.hpp>
+#include <stiffsoft/scene/scene_loader.hpp>
+
+namespace stiffsoft {
+
+namespace {
+
+/// Fills the scene's relative defaults (see prepare_scene()) from the model.
+void resolve_relative_defaults(SceneDescription& scene, const Model& model) {
+  const double L = model.bounding_box_diagonal();
+  if (!scene.contact.dhat) scene.contact.dhat = 1e-3 * L;
+  if (!scene.contact.eps_v) scene.contact.eps_v = 1e-3 * L;
+  if (!scene.solver.tolerance) scene.solver.tolerance = 1e-2 * L;
+  if (!scene.output.frame_dt) scene.output.frame_dt = std::max(scene.time.dt, 1.0 / 60.0);
+  for (std::size_t j = 0; j < scene.joints.size() && j < model.joints.size(); ++j)
+    if (!scene.joints[j].limit_stiffness) scene.joints[j].limit_stiffness = model.joints[j].limit_stiffness;
+}
+
+/// Simulation settings of a scene whose relative defaults are resolved.
+SimulationSettings simulation_settings(const SceneDescription& scene, const std::string& label) {
+  SimulationSettings s;
+  s.h = scene.time.dt;
+  s.integrator = scene.time.integrator;
+  s.gravity = scene.gravity;
+  s.dhat = scene.contact.dhat.value();
+  s.mu = scene.contact.mu;
+  s.eps_v = scene.contact.eps_v.value();
+  s.kappa = scene.contact.kappa;
+  s.contact_damping = scene.contact.damping;
+  for (std::size_t k = 0; k < scene.contact.pairs.size(); ++k) {
+    const ContactPairDescription& pair = scene.contact.pairs[k];
+    const auto index = [&](const std::string& name, const char* key) {
+      for (std::size_t i = 0; i < scene.bodies.size(); ++i)
+        if (scene.bodies[i].name == name) return int(i);
+      throw SceneError(label, "contact.pairs[" + std::to_string(k) + "]." + key,
+                       "no body is named \"" + name + "\"");
+    };
+    s.contact_pair_damping.push_back({index(pair.body_a, "body_a"), index(pair.body_b, "body_b"), pair.damping});
+  }
+  s.tolerance = scene.solver.tolerance.value();
+  s.max_iterations = scene.solver.max_iterations;
+  s.linear_solver = scene.solver.linear;
+  s.krylov_rtol_max = scene.solver.krylov_rtol_max;
+  validate(s);
+  return s;
+}
+
+/// The model and settings of a scene already checked against the schema.
+PreparedScene prepare_checked(SceneDescription scene, const std::filesystem::path& file) {
+  Model model = build_model(scene, file);
+  resolve_relative_defaults(scene, model);
+  SimulationSettings settings = simulation_settings(scene, file.string());
+  return {std::move(scene), std::move(model), std::move(settings)};
+}
+
+}  // namespace
+
+PreparedScene prepare_scene(const std::filesystem::path& file) { return prepare_checked(load_scene(file), file); }
+
+PreparedScene prepare_scene(const SceneDescription& scene, const std::string& label) {
+  const std::string file = label.empty() ? scene.name + " (built in code)" : label;
+  SceneDescription checked = load_scene_from_string(resolved_scene_json(scene).dump(), std::filesystem::current_path(),
+                                                    file, scene.name);
+  return prepare_checked(std::move(checked), file);
+}
+
+SceneSimulation make_simulation(const std::filesystem::path& file) { return make_simulation(prepare_scene(file)); }
+
+SceneSimulation make_simulation(const SceneDescription& scene, const std::string& label) {
+  return make_simulation(prepare_scene(scene, label));
+}
+
+SceneSimulation make_simulation(PreparedScene prepared) {
+  return SceneSimulation{std::move(prepared.scene), Simulation(std::move(prepared.model), prepared.settings)};
+}
+
+}  // namespace stiffsoft

@@ -1,0 +1,52 @@
+#pragma once
+/// @file The scene schema: the single source of truth for every key of a scene file
+/// (type, default, range or allowed values, unit, doc), in the spirit of PolyFEM's
+/// json-specs. A default that a description struct holds is taken from that struct
+/// (stiffsoft/scene/scene.hpp), so each is written once. The loader
+/// (stiffsoft/scene/scene_loader.hpp) validates against it and fills its defaults through
+/// apply_scene_schema() (scene_validation.hpp); docs/scenes.md is rendered from it by
+/// schema_markdown() (schema_markdown.hpp), which `stiffsoft schema --markdown` prints.
+
+#include <stdexcept>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace stiffsoft {
+
+/// Any problem with a scene file: syntax, type, range, unknown key, missing mesh, ...
+/// what() is `<file>: <json path>: <what was expected>`, for example
+/// `scenes/x.json: bodies[3].density: must be > 0 (got -2)`; a JSON syntax error has
+/// `line L, column C` in place of the JSON path.
+class SceneError : public std::runtime_error {
+ public:
+  /// file: the scene file as given; json_path: `bodies[3].density` style (empty for the
+  /// root object); expected: what was wrong and what was expected
+  SceneError(std::string file, std::string json_path, std::string expected);
+
+  /// the scene file as given by the caller
+  const std::string& file() const { return file_; }
+  /// where in the document, `bodies[3].density`; `(root)` for the whole document
+  const std::string& json_path() const { return json_path_; }
+  /// the message without file and path
+  const std::string& expected() const { return expected_; }
+
+ private:
+  std::string file_;
+  std::string json_path_;
+  std::string expected_;
+};
+
+/// The schema as a JSON list of entries, in document order. Each entry has
+/// `pointer` (`/bodies/*/density`; `*` is any list element), `type` (object, list,
+/// number, integer, string, vector3, file), `doc`, and where they apply `required`,
+/// `default` (null: computed from the scene, explained by `default_doc`), `min`,
+/// `exclusive_min`, `max`, `exclusive_max`, `options` (allowed strings), `extensions` (file),
+/// `min_length` (list), `unit`, and `when` ({sibling key: [values]}: the key is only
+/// allowed when a sibling has one of these values). Two entries with the same pointer
+/// are alternatives (a mesh is a file or a primitive object). Defaults held by the
+/// description structs are the values of default-constructed structs (TimeDescription{},
+/// BodyDescription{}, ...). Parsed once, on the first call.
+const nlohmann::ordered_json& scene_schema();
+
+}  // namespace stiffsoft

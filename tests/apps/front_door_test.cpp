@@ -1,0 +1,119 @@
+/// @file The front door: <stiffsoft/stiffsoft.hpp> alone turns a scene file or a scene built in
+/// code into a ready Simulation, with the same checks and errors as `stiffsoft run`, and the
+/// Recorder writes what `stiffsoft run` writes.
+
+#include <stiffsoft/stiffsoft.hpp>
+
+#include <gtest/gtest.h>
+
+#include "scene_helpers.hpp"
+
+using namespace stiffsoft;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A box dropping onto a fixed slab, built in code.
+SceneDescription box_on_slab() {
+  SceneDescription scene;
+  scene.name = "box_on_slab";
+  scene.description = "a box dropping onto a slab";
+  scene.time.duration = 0.1;
+  BodyDescription slab;
+  slab.name = "slab";
+  slab.kind = Motion::Fixed;
+  slab.mesh.primitive = PrimitiveShape{};
+  slab.mesh.primitive->extents = {2, 0.1, 2};
+  BodyDescription box;
+  box.name = "box";
+  box.mesh.primitive = PrimitiveShape{};
+  box.mesh.primitive->extents = {0.2, 0.2, 0.2};
+  box.position = {0, 0.2, 0};
+  scene.bodies = {slab, box};
+  return scene;
+}
+
+}  // namespace
+
+TEST(FrontDoor, ASceneFileBecomesTheSimulationStiffsoftRunSteps) {
+  const fs::path file = fs::path(STIFFSOFT_SOURCE_DIR) / "scenes" / "box_stack.json";
+  SceneSimulation run = make_simulation(file);
+  const SceneDescription loaded = load_scene(file);
+  EXPECT_EQ(run.scene.name, "box_stack");
+  // Relative defaults are resolved: d̂ = 1e-3 L, ε_d = 1e-2 L/s, frame_dt = max(dt, 1/60).
+  const double L = run.simulation.model().bounding_box_diagonal();
+  EXPECT_DOUBLE_EQ(*run.scene.contact.dhat, 1e-3 * L);
+  EXPECT_DOUBLE_EQ(run.simulation.settings().dhat, 1e-3 * L);
+  EXPECT_DOUBLE_EQ(run.simulation.settings().tolerance, 1e-2 * L);
+  EXPECT_DOUBLE_EQ(*run.scene.output.frame_dt, std::max(loaded.time.dt, 1.0 / 60.0));
+  EXPECT_TRUE(run.simulation.step().newton.converged);
+}
+
+TEST(FrontDoor, ASceneBuiltInCodeRunsLikeTheSameSceneFromJson) {
+  const SceneDescription scene = box_on_slab();
+  SceneSimulation in_code = make_simulation(scene);
+  SceneSimulation from_json = make_simulation(
+      load_scene_from_string(resolved_scene_json(scene).dump(), STIFFSOFT_SOURCE_DIR, "box.json", scene.name));
+  for (int k = 0; k < 5; ++k) {
+    in_code.simulation.step();
+    from_json.simulation.step();
+  }
+  EXPECT_EQ((in_code.simulation.q() - from_json.simulation.q()).cwiseAbs().maxCoeff(), 0.0);
+}
+
+TEST(FrontDoor, ASceneBuiltInCodeGetsTheSchemasErrorsWithItsJsonPath) {
+  SceneDescription scene = box_on_slab();
+  scene.bodies[1].density = -2;
+  try {
+    make_simulation(scene);
+    FAIL() << "a negative density was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.file(), "box_on_slab (built in code)");
+    EXPECT_EQ(e.json_path(), "bodies[1].density");
+  }
+  scene = box_on_slab();
+  scene.bodies[1].name = "slab";
+  EXPECT_THROW(make_simulation(scene, "my scene"), SceneError);
+}
+
+TEST(FrontDoor, SettingsBuiltInCodeAreValidatedWithTheSettingsName) {
+  PreparedScene prepared = prepare_scene(box_on_slab());
+  const auto message = [&](const std::function<void(SimulationSettings&)>& change) {
+    SimulationSettings s = prepared.settings;
+    change(s);
+    try {
+      validate(s);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(message([](SimulationSettings&) {}), "accepted");
+  EXPECT_EQ(message([](SimulationSettings& s) { s.dhat = -1; }), "SimulationSettings.dhat: must be > 0 and finite (got -1)");
+  EXPECT_EQ(message([](SimulationSettings& s) { s.h = 0; }), "SimulationSettings.h: must be > 0 and finite (got 0)");
+  EXPECT_EQ(message([](SimulationSettings& s) { s.max_iterations = 0; }), "SimulationSettings.max_iterations: must be ≥ 1 (got 0)");
+  EXPECT_EQ(message([](SimulationSettings& s) { s.krylov_rtol_max = 1; }), "SimulationSettings.krylov_rtol_max: must be in (0, 1) (got 1)");
+  EXPECT_NE(message([](SimulationSettings& s) { s.linear_solver = "gauss"; }).find("SimulationSettings.linear_solver: "),
+            std::string::npos);
+  prepared.settings.eps_v = 0;
+  EXPECT_THROW(Simulation(std::move(prepared.model), prepared.settings), std::invalid_argument);
+}
+
+TEST(FrontDoor, TheRecorderWritesWhatStiffsoftRunWrites) {
+  const fs::path out = stiffsoft::testing::fresh_folder("stiffsoft_recorder");
+  SceneSimulation run = make_simulation(box_on_slab());
+  {
+    Recorder recorder(out, run.scene, run.simulation);
+    for (int k = 1; k <= 6; ++k) recorder.record(run.simulation.step(), k == 6);
+    recorder.finish();
+    // t = 0, then every frame_dt = max(h, 1/60 s) (after steps 2, 4, 5) and the last step.
+    EXPECT_EQ(recorder.frame_count(), 5);
+  }
+  for (const char* name : {"box_on_slab.pvd", "stats.csv", "bodies.csv", "scene.resolved.json"})
+    EXPECT_TRUE(fs::exists(out / name)) << name;
+  EXPECT_EQ(stiffsoft::testing::csv_column(out / "stats.csv", "newton_iterations").size(), 6u);
+  const std::vector<std::string> names = step_stats_column_names();
+  EXPECT_EQ(stiffsoft::testing::read_text(out / "stats.csv").substr(0, names[0].size() + names[1].size() + 1), "step,time");
+  EXPECT_EQ(load_scene(out / "scene.resolved.json").bodies.size(), 2u);
+  fs::remove_all(out);
+}
