@@ -317,4 +317,13 @@ const nlohmann::ordered_json& scene_schema() {
   return schema;
 }
 
+std::string schema_list_text(const nlohmann::ordered_json& list, const std::string& separator) {
+  std::string out;
+  for (const auto& item : list) {
+    if (!out.empty()) out += separator;
+    out += item.is_string() ? item.get<std::string>() : item.dump();
+  }
+  return out;
+}
+
 }  // namespace stiffsoft

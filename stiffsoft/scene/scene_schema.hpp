@@ -49,4 +49,8 @@ class SceneError : public std::runtime_error {
 /// BodyDescription{}, ...). Parsed once, on the first call.
 const nlohmann::ordered_json& scene_schema();
 
+/// A list of the schema (`options`, `extensions`, `when` values) as text for messages and docs:
+/// strings as they are, anything else as JSON, joined by `separator`.
+std::string schema_list_text(const nlohmann::ordered_json& list, const std::string& separator = ", ");
+
 }  // namespace stiffsoft

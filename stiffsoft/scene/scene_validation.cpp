@@ -24,15 +24,6 @@ std::string shown(const Json& value) {
   return kind + text;
 }
 
-std::string join(const Json& list, const std::string& separator = ", ") {
-  std::string out;
-  for (const auto& item : list) {
-    if (!out.empty()) out += separator;
-    out += item.is_string() ? item.get<std::string>() : item.dump();
-  }
-  return out;
-}
-
 // Human name of an entry's type, for "must be ..." messages.
 std::string type_phrase(const Json& entry) {
   const std::string type = entry.at("type");
@@ -102,7 +93,7 @@ class Validator {
     if (type == "string") {
       if (entry.contains("options") &&
           std::find(entry["options"].begin(), entry["options"].end(), value) == entry["options"].end())
-        fail(path, "unknown value " + value.dump() + " (allowed: " + join(entry["options"]) + ")");
+        fail(path, "unknown value " + value.dump() + " (allowed: " + schema_list_text(entry["options"]) + ")");
       return value;
     }
     if (type == "file") return validate_file(value, entry, path);
@@ -174,7 +165,7 @@ class Validator {
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     const Json& allowed = entry.at("extensions");
     if (std::find(allowed.begin(), allowed.end(), extension) == allowed.end())
-      fail(path, "unsupported mesh file extension \"" + extension + "\" (allowed: " + join(allowed) + ")");
+      fail(path, "unsupported mesh file extension \"" + extension + "\" (allowed: " + schema_list_text(allowed) + ")");
     // Relative paths are relative to the scene file, so a scene folder can be moved whole.
     const std::filesystem::path resolved = std::filesystem::absolute(folder_ / given).lexically_normal();
     if (!std::filesystem::is_regular_file(resolved))
@@ -242,7 +233,7 @@ class Validator {
         if (!applies) {
           std::string condition;
           for (const auto& [sibling, values] : (*entry)["when"].items())
-            condition = sibling + " is " + join(values, " or ") + " (it is " +
+            condition = sibling + " is " + schema_list_text(values, " or ") + " (it is " +
                         (value.contains(sibling) ? value[sibling].dump() : std::string("unset")) + ")";
           fail(q, "only allowed when " + condition);
         }

@@ -13,15 +13,6 @@ namespace {
 using Json = nlohmann::ordered_json;
 
 // A list on one line: strings bare, other values as JSON.
-std::string join(const Json& list, const std::string& separator = ", ") {
-  std::string out;
-  for (const auto& item : list) {
-    if (!out.empty()) out += separator;
-    out += item.is_string() ? item.get<std::string>() : item.dump();
-  }
-  return out;
-}
-
 std::string markdown_key(const std::string& pointer) {
   if (pointer == "/") return "(root)";
   std::string key;
@@ -80,11 +71,11 @@ std::string markdown_allowed(const Json& entry) {
     }
     parts.push_back(options);
   }
-  if (entry.contains("extensions")) parts.push_back(join(entry["extensions"]));
+  if (entry.contains("extensions")) parts.push_back(schema_list_text(entry["extensions"]));
   if (entry.contains("min_length")) parts.push_back("at least " + entry["min_length"].dump() + " item(s)");
   if (entry.contains("when"))
     for (const auto& [sibling, values] : entry["when"].items())
-      parts.push_back("only when " + sibling + " is " + join(values, ", "));
+      parts.push_back("only when " + sibling + " is " + schema_list_text(values, ", "));
   std::string out;
   for (const auto& part : parts) out += (out.empty() ? "" : "; ") + part;
   return out;

@@ -9,16 +9,12 @@
 
 namespace stiffsoft {
 
-namespace {
-
-std::vector<char*> pointers(std::vector<std::string>& strings) {
+std::vector<char*> argv_pointers(std::vector<std::string>& strings) {
   std::vector<char*> p;
   for (std::string& s : strings) p.push_back(s.data());
   p.push_back(nullptr);
   return p;
 }
-
-}  // namespace
 
 PetscSession::PetscSession(const std::vector<std::string>& options, const std::string& program) {
   m_petsc.push_back(program);
@@ -27,7 +23,7 @@ PetscSession::PetscSession(const std::vector<std::string>& options, const std::s
 }
 
 void PetscSession::start() {
-  m_petsc_pointers = pointers(m_petsc);
+  m_petsc_pointers = argv_pointers(m_petsc);
   PetscBool finalized = PETSC_FALSE;
   PetscFinalized(&finalized);
   if (finalized)

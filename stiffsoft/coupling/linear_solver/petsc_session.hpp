@@ -45,6 +45,9 @@ class PetscSession {
   bool m_owns = false;
 };
 
+/// argv-style pointers to `strings` (null-terminated), valid while `strings` is unchanged.
+std::vector<char*> argv_pointers(std::vector<std::string>& strings);
+
 /// Sets `name` (e.g. "-ksp_monitor") in PETSc's options database, with an optional value;
 /// objects created afterwards see it. Starts PETSc if needed.
 void set_petsc_option(const std::string& name, const std::string& value = "");

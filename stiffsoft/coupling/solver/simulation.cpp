@@ -11,29 +11,6 @@
 namespace stiffsoft {
 
 namespace {
-BarrierSettings barrier_settings(const Model& model, const SimulationSettings& s) {
-  BarrierSettings b;
-  b.dhat = s.dhat;
-  b.kappa = s.kappa;
-  b.bbox_diagonal = model.bounding_box_diagonal();
-  double mass = 0;
-  int n = 0;
-  // Average over what carries DOFs: dynamic affine bodies and dynamic soft nodes (IPC
-  // averages over nodes; an affine body is one node of mass m).
-  for (const BodyModel& body : model.bodies)
-    if (body.dof >= 0 && body.motion == Motion::Dynamic) {
-      mass += body.mass;
-      ++n;
-    }
-  for (int i = 0; i < model.nodes.size(); ++i)
-    if (model.nodes.motion[i] == Motion::Dynamic) {
-      mass += model.nodes.mass[i];
-      ++n;
-    }
-  b.average_mass = n ? mass / n : 1.0;
-  return b;
-}
-
 /// The linear solver of the settings; with linear joint equalities "auto" is CHOLMOD (the
 /// reduced system has no DOF blocks for a Krylov backend) and a PETSc backend is an error.
 std::string linear_solver_name(const Model& model, const SimulationSettings& s) {

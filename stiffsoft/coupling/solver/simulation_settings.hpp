@@ -8,6 +8,7 @@
 
 #include <stiffsoft/coupling/solver/integrator.hpp>
 #include <stiffsoft/coupling/solver/newton.hpp>
+#include <stiffsoft/coupling/terms/barrier_term.hpp>
 #include <stiffsoft/coupling/terms/damping_term.hpp>
 
 namespace stiffsoft {
@@ -37,5 +38,10 @@ struct SimulationSettings {
 /// damping on bodies ≥ 0 with k_d ≥ 0. Throws std::invalid_argument naming the first bad
 /// setting and what was expected (`SimulationSettings.dhat: must be > 0 (got -1)`).
 void validate(const SimulationSettings& settings);
+
+/// The barrier's settings in a simulation of `model`: d̂ and κ from the settings, the model's
+/// bounding-box diagonal, and the average mass of what carries DOFs (dynamic affine bodies and
+/// dynamic soft nodes, each one node of its mass, as IPC averages over nodes) for κ's balance.
+BarrierSettings barrier_settings(const Model& model, const SimulationSettings& settings);
 
 }  // namespace stiffsoft

@@ -1,0 +1,557 @@
+/// @file Whole-term derivative checks: every energy term Newton sees (inertia, orthogonality,
+/// elasticity, contact barrier, friction, joint limits, damping), and their sum, on one small
+/// mixed model with active contacts, built as Simulation::step builds them at a step's start.
+/// For each: the value is finite, the gradient matches central differences of the value, the
+/// exact (un-projected) Hessian matches central differences of the gradient, add_hessian is the
+/// documented element-wise PSD projection of that exact Hessian, and the assembled sparse
+/// matrix is symmetric PSD. The CCD-bounded max_step of the barrier and of the joint limits
+/// never lets a step reach an intersection or cross a limit.
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <memory>
+#include <optional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <stiffsoft/coupling/contact/constraint_set.hpp>
+#include <stiffsoft/coupling/contact/friction.hpp>
+#include <stiffsoft/coupling/joints/joint_measures.hpp>
+#include <stiffsoft/coupling/model/stencil_jacobian.hpp>
+#include <stiffsoft/coupling/solver/integrator.hpp>
+#include <stiffsoft/coupling/terms/barrier_term.hpp>
+#include <stiffsoft/coupling/terms/damping_term.hpp>
+#include <stiffsoft/coupling/terms/elasticity_term.hpp>
+#include <stiffsoft/coupling/terms/friction_term.hpp>
+#include <stiffsoft/coupling/terms/inertia_term.hpp>
+#include <stiffsoft/coupling/terms/joint_term.hpp>
+#include <stiffsoft/coupling/terms/orthogonality_term.hpp>
+#include <stiffsoft/libabd/orthogonality_potential.hpp>
+#include <stiffsoft/libfem/elastic_energy.hpp>
+#include <stiffsoft/libfem/make_material.hpp>
+#include <stiffsoft/libfem/tet_element.hpp>
+#include <stiffsoft/meshing/intersection.hpp>
+#include <stiffsoft/scene/make_simulation.hpp>
+#include <stiffsoft/scene/scene_loader.hpp>
+
+#include "finite_differences.hpp"
+
+using namespace stiffsoft;
+using stiffsoft::testing::fd_gradient;
+using stiffsoft::testing::fd_jacobian;
+using stiffsoft::testing::min_eigenvalue;
+using stiffsoft::testing::relative_error;
+
+namespace {
+
+/// d̂ of the scene (m). The bodies start 2 d̂ apart (the loader wants more than d̂) and the
+/// test moves them to 0.5 d̂ (contact_q), well inside the barrier's active range.
+constexpr double kDhat = 0.01;
+
+/// A fixed ground, a soft pad (coarse tets) lying on it and an affine block lying on the pad,
+/// hinged to the world about the vertical through its centre with a rotation range whose upper
+/// limit (0.03 rad) is closer than the limit's activation (0.05 rad), so the limit barrier is
+/// active at the initial angle 0. Friction, contact damping and hinge damping are on. The
+/// bodies are turned about y by different angles so that no edges are parallel and no vertex
+/// sits on a Voronoi boundary of the primitive it faces (the Hessians jump there).
+const char* kScene = R"({
+  "description": "Energy-term test model: fixed ground, soft pad, affine block hinged to the world.",
+  "time": {"dt": 0.01},
+  "contact": {"dhat": 0.01, "mu": 0.4, "eps_v": 0.01, "damping": 0.05},
+  "solver": {"linear": "cholmod"},
+  "bodies": [
+    {"name": "ground", "kind": "fixed", "mesh": {"primitive": "box", "size": [3.0, 0.2, 3.0]},
+     "position": [0.0, -0.1, 0.0], "rotation_deg": [0.0, 7.0, 0.0]},
+    {"name": "pad", "model": "soft", "mesh": {"primitive": "box", "size": [1.0, 0.4, 1.0]}, "mesh_size": 0.6,
+     "material": {"young": 100000.0, "poisson": 0.3}, "density": 500.0,
+     "position": [0.13, 0.22, -0.07], "rotation_deg": [0.0, 20.0, 0.0]},
+    {"name": "block", "mesh": {"primitive": "box", "size": [0.6, 0.3, 0.6]}, "density": 1000.0,
+     "position": [0.17, 0.59, -0.05], "rotation_deg": [0.0, 50.0, 0.0]}
+  ],
+  "joints": [
+    {"name": "hinge", "kind": "hinge", "body_a": "block", "anchor": [0.17, 0.59, -0.05], "axis": [0.0, 1.0, 0.0],
+     "lower": -0.5, "upper": 0.03, "damping": 2.0}
+  ]
+})";
+
+/// The prepared scene, built once: meshing the pad is the slow part, and the terms only hold a
+/// reference to the model.
+const PreparedScene& prepared() {
+  static const PreparedScene p =
+      prepare_scene(load_scene_from_string(kScene, STIFFSOFT_SOURCE_DIR, "terms.json", "terms"), "terms.json");
+  return p;
+}
+
+int body_index(const Model& model, const std::string& name) {
+  for (int b = 0; b < int(model.bodies.size()); ++b)
+    if (model.bodies[b].name == name) return b;
+  throw std::runtime_error("no body " + name);
+}
+
+/// The DOFs with the contacts active: the pad lowered by 1.5 d̂ (0.5 d̂ above the ground), the
+/// block by 3 d̂ (0.5 d̂ above the pad). This leaves the hinge's anchor equality (eliminated by
+/// the reduced basis, not a term) but none of the terms checked here.
+Eigen::VectorXd contact_q(const Model& model) {
+  Eigen::VectorXd q = model.initial_q();
+  const BodyModel& pad = model.bodies[body_index(model, "pad")];
+  for (int i = pad.node_begin; i < pad.node_end; ++i)
+    if (model.nodes.dof[i] >= 0) q[model.nodes.dof[i] + 1] -= 1.5 * kDhat;
+  q[model.bodies[body_index(model, "block")].dof + 1] -= 3.0 * kDhat;
+  return q;
+}
+
+/// q_n plus a random perturbation of 1e-4 (m, and dimensionless for A) in every DOF, plus a
+/// slide of the block by (2, 0, 1)·1e-4 m: some friction stencils slide (‖u‖ > ε_v h = 1e-4 m),
+/// others stick, and nothing sits at a symmetric point. All gaps stay near 0.5 d̂ = 5e-3 m.
+Eigen::VectorXd perturbed(const Model& model, const Eigen::VectorXd& q_n) {
+  std::mt19937 rng(20240611);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::VectorXd q = q_n;
+  for (Eigen::Index i = 0; i < q.size(); ++i) q[i] += 1e-4 * u(rng);
+  q.segment<3>(model.bodies[body_index(model, "block")].dof) += Eigen::Vector3d(2e-4, 0.0, 1e-4);
+  return q;
+}
+
+/// V max(Λ, 0) Vᵀ of the symmetric part of A: the test's own PSD projection.
+Eigen::MatrixXd clamp_psd(const Eigen::MatrixXd& A) {
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(0.5 * (A + A.transpose()));
+  return es.eigenvectors() * es.eigenvalues().cwiseMax(0.0).asDiagonal() * es.eigenvectors().transpose();
+}
+
+/// The full symmetric dense matrix of a BlockHessian, from its sparse upper triangle (the
+/// matrix the linear solver gets).
+Eigen::MatrixXd dense(const BlockHessian& H) {
+  const Eigen::SparseMatrix<double> upper = H.upper();
+  const Eigen::SparseMatrix<double> full = upper.selfadjointView<Eigen::Upper>();
+  return Eigen::MatrixXd(full);
+}
+
+/// The dense matrix of BlockHessian::multiply (column i = H e_i), which reads every stored
+/// block in full: a non-symmetric diagonal block shows here and not in upper().
+Eigen::MatrixXd dense_by_products(const BlockHessian& H, int n) {
+  Eigen::MatrixXd M(n, n);
+  for (int i = 0; i < n; ++i) M.col(i) = H.multiply(Eigen::VectorXd::Unit(n, i));
+  return M;
+}
+
+/// The terms of one step, built at q_n exactly as Simulation does at the start of a step
+/// (constructors as in Simulation's, then step(): q̃, barrier update, κ balancing, friction lag,
+/// damping lag).
+struct StepTerms {
+  const Model& model;
+  const SimulationSettings& s;
+  const double beta = integrator_beta(s.integrator);
+  const double beta_h2 = beta * s.h * s.h;
+  InertiaTerm inertia{model, s.kinematic_weight};
+  OrthogonalityTerm orthogonality{model, beta_h2};
+  ElasticityTerm elasticity{model, beta_h2};
+  BarrierTerm barrier;
+  std::optional<FrictionTerm> friction;
+  JointTerm joints{model, beta_h2};
+  DampingTerm damping{model};
+  Eigen::VectorXd q_n;
+  Eigen::MatrixX3d x_n;
+  std::vector<ContactConstraint> lagged;  ///< the barrier's contacts at q_n (friction's stencils)
+  double kappa_lagged = 0;                ///< κ when friction was lagged
+
+  StepTerms(const Model& m, const SimulationSettings& settings, const Eigen::VectorXd& q)
+      : model(m), s(settings), barrier(m, barrier_settings(m, settings), nullptr), q_n(q), x_n(m.surface(q)) {
+    if (s.mu > 0) friction.emplace(model, s.mu, s.eps_v * s.h);
+    // q̃ of backward Euler from rest: qⁿ + h² g on the dynamic DOFs.
+    Eigen::VectorXd gravity_q = Eigen::VectorXd::Zero(model.num_dofs);
+    for (const BodyModel& body : model.bodies)
+      if (body.dof >= 0 && body.motion == Motion::Dynamic) gravity_q.segment<3>(body.dof) = s.gravity;
+    for (int i = 0; i < model.nodes.size(); ++i)
+      if (model.nodes.motion[i] == Motion::Dynamic) gravity_q.segment<3>(model.nodes.dof[i]) = s.gravity;
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.num_dofs);
+    inertia.set_target(predicted_q(s.integrator, s.h, q_n, zero, q_n, zero, gravity_q));
+    const Configuration c_n{q_n, x_n};
+    barrier.update(c_n);
+    Eigen::VectorXd grad_other = Eigen::VectorXd::Zero(model.num_dofs);
+    inertia.add_gradient(c_n, grad_other);
+    orthogonality.add_gradient(c_n, grad_other);
+    elasticity.add_gradient(c_n, grad_other);
+    barrier.initialize_stiffness(c_n, grad_other);
+    if (friction) friction->lag(c_n, barrier);
+    damping.start_step(q_n, beta * s.h);
+    damping.lag_contact(c_n, barrier, s.contact_damping, s.contact_pair_damping, beta_h2);
+    damping.lag_joints();
+    lagged = barrier.constraints();
+    kappa_lagged = barrier.kappa();
+  }
+
+  /// The term called `name`, or all of them for "sum".
+  std::vector<EnergyTerm*> terms(const std::string& name) {
+    std::map<std::string, EnergyTerm*> by_name{{"inertia", &inertia},   {"orthogonality", &orthogonality},
+                                               {"elasticity", &elasticity}, {"barrier", &barrier},
+                                               {"friction", &*friction}, {"joints", &joints},
+                                               {"damping", &damping}};
+    if (name != "sum") return {by_name.at(name)};
+    std::vector<EnergyTerm*> all;
+    for (const auto& [n, t] : by_name) all.push_back(t);
+    return all;
+  }
+
+  /// Σ value after update() at q, as Newton evaluates a trial point.
+  double value(const std::vector<EnergyTerm*>& ts, const Eigen::VectorXd& q) const {
+    const Eigen::MatrixX3d x = model.surface(q);
+    double e = 0;
+    for (EnergyTerm* t : ts) t->update({q, x});
+    for (EnergyTerm* t : ts) e += t->value({q, x});
+    return e;
+  }
+
+  /// Σ gradient after update() at q.
+  Eigen::VectorXd gradient(const std::vector<EnergyTerm*>& ts, const Eigen::VectorXd& q) const {
+    const Eigen::MatrixX3d x = model.surface(q);
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(q.size());
+    for (EnergyTerm* t : ts) t->update({q, x});
+    for (EnergyTerm* t : ts) t->add_gradient({q, x}, g);
+    return g;
+  }
+
+  /// Σ add_hessian after update() at q, as the BlockHessian Newton assembles.
+  BlockHessian hessian(const std::vector<EnergyTerm*>& ts, const Eigen::VectorXd& q) const {
+    const Eigen::MatrixX3d x = model.surface(q);
+    BlockHessian H(model.blocks);
+    for (EnergyTerm* t : ts) t->update({q, x});
+    for (EnergyTerm* t : ts) t->add_hessian({q, x}, H);
+    return H;
+  }
+
+  /// The exact Hessian of a term and its element-wise PSD projection, assembled by the test
+  /// from the library's un-projected element Hessians, each projected where the term documents
+  /// it projects: the 12×12 stencil (barrier, friction, orthogonality), the joint potential's
+  /// y-space Hessian (joints), ∂P/∂F (elasticity). Inertia and damping are quadratics with
+  /// constant PSD Hessians: their add_hessian is both.
+  struct Reference {
+    Eigen::MatrixXd exact, projected;
+  };
+  Reference reference(const std::string& name, const Eigen::VectorXd& q) {
+    if (name == "sum") {
+      Reference sum{Eigen::MatrixXd::Zero(q.size(), q.size()), Eigen::MatrixXd::Zero(q.size(), q.size())};
+      for (const char* n : {"inertia", "orthogonality", "elasticity", "barrier", "friction", "joints", "damping"}) {
+        const Reference r = reference(n, q);
+        sum.exact += r.exact;
+        sum.projected += r.projected;
+      }
+      return sum;
+    }
+    const Eigen::MatrixX3d x = model.surface(q);
+    const Configuration c{q, x};
+    for (EnergyTerm* t : terms(name)) t->update(c);
+    BlockHessian exact(model.blocks), projected(model.blocks);
+    if (name == "inertia" || name == "damping") {
+      for (EnergyTerm* t : terms(name)) t->add_hessian(c, exact);
+      return {dense(exact), dense(exact)};
+    }
+    if (name == "orthogonality") {
+      for (const BodyModel& body : model.bodies) {
+        if (body.representation != Representation::Affine || body.motion != Motion::Dynamic) continue;
+        const abd::Matrix12d H = abd::orthogonality_potential_hessian(q.segment<12>(body.dof),
+                                                                      beta_h2 * body.kappa * body.volume, 1.0, false);
+        exact.add(body.block, body.block, H);
+        projected.add(body.block, body.block, clamp_psd(H));
+      }
+    } else if (name == "barrier") {
+      for (const ContactConstraint& k : barrier.constraints()) {
+        const contact::Matrix12d H = barrier.kappa() * k.weight *
+                                     contact::barrier_potential_hessian(k.stencil, gather(x, k.vertices), s.dhat, false);
+        const StencilJacobian J(model, k.vertices);
+        J.scatter_hessian(H, exact);
+        J.scatter_hessian(contact::Matrix12d(clamp_psd(H)), projected);
+      }
+    } else if (name == "friction") {
+      for (const ContactConstraint& k : lagged) {
+        const contact::FrictionStencil f =
+            contact::make_friction_stencil(k.stencil, gather(x_n, k.vertices), s.dhat, kappa_lagged * k.weight);
+        const contact::Vector12d dx = gather(x, k.vertices) - gather(x_n, k.vertices);
+        const contact::Matrix12d H = contact::friction_potential_hessian(f, dx, s.mu, s.eps_v * s.h, false);
+        const StencilJacobian J(model, k.vertices);
+        J.scatter_hessian(H, exact);
+        J.scatter_hessian(contact::Matrix12d(clamp_psd(H)), projected);
+      }
+    } else if (name == "joints") {
+      for (const auto& [p, v] : joints.potentials()) {
+        const Eigen::VectorXd y = v.gather(q);
+        if (p.inactive(measure(p.measure, y))) continue;
+        const MeasureValue m = measure_derivatives(p.measure, y);
+        const Eigen::MatrixXd H_y = p.second_derivative(m.s) * m.grad * m.grad.transpose() + p.first_derivative(m.s) * m.hess;
+        v.scatter_hessian(beta_h2 * H_y, exact);
+        v.scatter_hessian(beta_h2 * clamp_psd(H_y), projected);
+      }
+    } else if (name == "elasticity") {
+      for (const BodyModel& body : model.bodies) {
+        if (body.representation != Representation::Soft) continue;
+        const int n = body.node_end - body.node_begin;
+        const Eigen::MatrixX4i T =
+            model.nodes.T.middleRows(body.tet_begin, body.tet_end - body.tet_begin).array() - body.node_begin;
+        const fem::ElasticEnergy energy(model.nodes.X.middleRows(body.node_begin, n), T,
+                                        fem::make_material(body.material.model, body.material.young,
+                                                           body.material.poisson));
+        Eigen::VectorXd xb(3 * n);
+        for (int i = 0; i < n; ++i) {
+          const int node = body.node_begin + i;
+          xb.segment<3>(3 * i) = model.nodes.dof[node] < 0 ? Eigen::Vector3d(model.nodes.X.row(node).transpose())
+                                                           : Eigen::Vector3d(q.segment<3>(model.nodes.dof[node]));
+        }
+        for (int e = 0; e < energy.num_elements(); ++e) {
+          const fem::TetElement& te = energy.element(e);
+          const fem::Matrix9x12d dFdx = fem::deformation_gradient_jacobian(te);
+          const fem::Matrix9d dPdF = energy.material().dPdF(fem::deformation_gradient(te, energy.element_positions(e, xb)));
+          const fem::Matrix12d H = beta_h2 * te.volume * dFdx.transpose() * dPdF * dFdx;
+          const fem::Matrix12d H_proj = beta_h2 * te.volume * dFdx.transpose() * clamp_psd(dPdF) * dFdx;
+          for (int a = 0; a < 4; ++a) {
+            const int block_a = model.nodes.block[body.node_begin + energy.tets()(e, a)];
+            if (block_a < 0) continue;
+            for (int b = 0; b < 4; ++b) {
+              const int block_b = model.nodes.block[body.node_begin + energy.tets()(e, b)];
+              if (block_b < block_a) continue;  // each unordered pair once (add() keeps the upper triangle)
+              exact.add(block_a, block_b, H.block<3, 3>(3 * a, 3 * b));
+              projected.add(block_a, block_b, H_proj.block<3, 3>(3 * a, 3 * b));
+            }
+          }
+        }
+      }
+    }
+    return {dense(exact), dense(projected)};
+  }
+};
+
+/// The model, the contact configuration q_n the terms are lagged at, and the perturbed q the
+/// derivatives are checked at.
+struct Fixture {
+  const Model& model = prepared().model;
+  const SimulationSettings& settings = prepared().settings;
+  Eigen::VectorXd q_n = contact_q(model);
+  Eigen::VectorXd q = perturbed(model, q_n);
+  StepTerms step{model, settings, q_n};
+};
+
+// Central differences: with step δ the truncation error is O((δ/ℓ)²) relative, ℓ the shortest
+// length over which a term's derivatives change, and the round-off O(ε_mach E/(δ ‖∇E‖)).
+// ℓ is the 5e-3 m contact gap for the barrier and ≥ 0.1 m for the bodies' own terms: δ = 1e-6
+// (m for positions and translations, dimensionless for A). Friction changes over
+// ε_v h = 1e-4 m (its smoothing of static friction): its error is (δ/3e-4)², measured, so it
+// takes δ = 1e-8. The sum holds both: δ = 3e-8, where friction's truncation and the
+// elasticity's round-off are both ≈ 1e-9.
+double fd_step(const std::string& term) {
+  if (term == "friction") return 1e-8;
+  if (term == "sum") return 3e-8;
+  return 1e-6;
+}
+// Gradients and Hessians against differences: the largest relative error observed with these
+// steps is 1.6e-8 (elasticity's gradient; every Hessian ≤ 1.1e-8), so 1e-6 leaves a margin of
+// 60 or more, while a wrong sign, a missing factor or a dropped element changes the relative
+// error by the share of the wrong piece: even the exact Hessian's PSD projection, which changes
+// it by 2e-5 (orthogonality) to 1e-2 (joints) here, would fail.
+constexpr double kGradientTolerance = 1e-6;
+constexpr double kHessianTolerance = 1e-6;
+// Identities that hold up to round-off only (the same element matrices summed in another order,
+// another eigen-solver): observed ≤ 1e-15 relative; 1e-10 leaves room for other compilers.
+constexpr double kRoundOff = 1e-10;
+
+const std::vector<std::string> kTerms{"inertia", "orthogonality", "elasticity", "barrier", "friction",
+                                      "joints",  "damping",       "sum"};
+
+class WholeTerm : public ::testing::TestWithParam<std::string> {};
+
+}  // namespace
+
+TEST(EnergyTermsModel, HasEveryTermActiveAnAffineSoftContactAndBothFrictionRegimes) {
+  Fixture f;
+  const Model& model = f.model;
+  const int ground = body_index(model, "ground"), pad = body_index(model, "pad"), block = body_index(model, "block");
+  EXPECT_EQ(model.bodies[pad].representation, Representation::Soft);
+  EXPECT_EQ(model.bodies[block].representation, Representation::Affine);
+  EXPECT_EQ(model.bodies[ground].motion, Motion::Fixed);
+  EXPECT_FALSE(f.step.orthogonality.empty());
+  EXPECT_FALSE(f.step.elasticity.empty());
+  EXPECT_FALSE(f.step.joints.empty());
+  EXPECT_FALSE(f.step.damping.empty());
+  ASSERT_TRUE(f.step.friction);
+  EXPECT_GT(f.step.friction->size(), 0u);
+  // Contacts of every pair of bodies that touch: block–pad (the stencil Jacobian mixes 12-wide
+  // affine and 3-wide node blocks) and pad–ground (a fixed body's vertices drop out).
+  bool block_pad = false, pad_ground = false;
+  for (const ContactConstraint& k : f.step.lagged) {
+    std::vector<int> bodies;
+    for (const int v : k.vertices)
+      if (v >= 0) bodies.push_back(model.mesh.vertex_body[v]);
+    const auto has = [&](int b) { return std::find(bodies.begin(), bodies.end(), b) != bodies.end(); };
+    block_pad |= has(block) && has(pad);
+    pad_ground |= has(pad) && has(ground);
+  }
+  EXPECT_TRUE(block_pad);
+  EXPECT_TRUE(pad_ground);
+  // The hinge's upper limit barrier is active (gap 0.03 rad < activation 0.05 rad).
+  bool limit_active = false;
+  for (const auto& [p, v] : f.step.joints.potentials()) limit_active |= !p.inactive(measure(p.measure, v.gather(f.q)));
+  EXPECT_TRUE(limit_active);
+  const Eigen::MatrixX3d x = model.surface(f.q);
+  // Friction in both regimes: some stencils slide (‖u‖ ≥ ε_v h), some stick.
+  int sliding = 0, sticking = 0;
+  for (const ContactConstraint& k : f.step.lagged) {
+    const contact::FrictionStencil s = contact::make_friction_stencil(k.stencil, gather(f.step.x_n, k.vertices), kDhat,
+                                                                      f.step.kappa_lagged * k.weight);
+    if (s.normal_force <= 0) continue;
+    const double u = (contact::tangent_operator(s) * (gather(x, k.vertices) - gather(f.step.x_n, k.vertices))).norm();
+    (u >= f.settings.eps_v * f.settings.h ? sliding : sticking) += 1;
+  }
+  EXPECT_GT(sliding, 0);
+  EXPECT_GT(sticking, 0);
+  std::cout << f.step.lagged.size() << " contacts, " << sliding << " sliding, " << sticking << " sticking, "
+            << model.num_dofs << " DOFs\n";
+  f.step.barrier.update({f.q, x});
+  EXPECT_LT(f.step.barrier.min_active_distance({f.q, x}), 0.6 * kDhat);
+  EXPECT_GT(f.step.barrier.min_active_distance({f.q, x}), 0.4 * kDhat);
+}
+
+TEST_P(WholeTerm, ValueAndGradientAreFiniteAndTheGradientMatchesFiniteDifferences) {
+  Fixture f;
+  const std::vector<EnergyTerm*> terms = f.step.terms(GetParam());
+  const double e = f.step.value(terms, f.q);
+  const Eigen::VectorXd g = f.step.gradient(terms, f.q);
+  ASSERT_TRUE(std::isfinite(e));
+  ASSERT_TRUE(g.allFinite());
+  ASSERT_GT(g.norm(), 0.0) << "a zero gradient would make the check vacuous";
+  const Eigen::VectorXd g_fd = fd_gradient([&](const Eigen::VectorXd& y) { return f.step.value(terms, y); }, f.q, fd_step(GetParam()));
+  EXPECT_LT(relative_error(g, g_fd), kGradientTolerance) << "‖g‖ = " << g.norm();
+}
+
+TEST_P(WholeTerm, ExactHessianMatchesFiniteDifferencesOfTheGradient) {
+  Fixture f;
+  const std::vector<EnergyTerm*> terms = f.step.terms(GetParam());
+  const Eigen::MatrixXd H = f.step.reference(GetParam(), f.q).exact;
+  ASSERT_TRUE(H.allFinite());
+  ASSERT_GT(H.norm(), 0.0);
+  const Eigen::MatrixXd H_fd =
+      fd_jacobian([&](const Eigen::VectorXd& y) { return f.step.gradient(terms, y); }, f.q, fd_step(GetParam()));
+  EXPECT_LT(relative_error(H, H_fd), kHessianTolerance) << "‖H‖ = " << H.norm();
+}
+
+TEST_P(WholeTerm, HessianIsTheElementwisePsdProjectionOfTheExactHessian) {
+  Fixture f;
+  const std::vector<EnergyTerm*> terms = f.step.terms(GetParam());
+  const StepTerms::Reference r = f.step.reference(GetParam(), f.q);
+  const Eigen::MatrixXd H = dense(f.step.hessian(terms, f.q));
+  EXPECT_LT(relative_error(H, r.projected), kRoundOff);
+  // Projecting an element only adds curvature: H − H_exact = Σ Gᵀ (P(A) − A) G ⪰ 0.
+  const Eigen::MatrixXd added = H - r.exact;
+  EXPECT_GE(min_eigenvalue(added), -kRoundOff * H.norm());
+  // Convex terms (quadratics with PSD matrices; friction, whose 2×2 core is PSD for every
+  // tangential displacement) are not changed by the projection: there add_hessian is the
+  // exact Hessian, and so matches the differences directly.
+  if (GetParam() == "inertia" || GetParam() == "damping" || GetParam() == "friction")
+    EXPECT_LT(relative_error(H, r.exact), kRoundOff);
+  std::cout << "[ " << GetParam() << " ] projection changed the Hessian by ‖H − H_exact‖/‖H_exact‖ = "
+            << relative_error(H, r.exact) << "\n";
+}
+
+TEST_P(WholeTerm, AssembledHessianIsSymmetricPositiveSemiDefinite) {
+  Fixture f;
+  const std::vector<EnergyTerm*> terms = f.step.terms(GetParam());
+  const BlockHessian H = f.step.hessian(terms, f.q);
+  const Eigen::MatrixXd full = dense(H);
+  const Eigen::MatrixXd products = dense_by_products(H, f.model.num_dofs);
+  ASSERT_TRUE(full.allFinite());
+  // Every stored block, diagonal ones in full, is symmetric: H e_i reproduces the matrix
+  // the solver gets from the upper triangle.
+  EXPECT_LT(relative_error(products, full), kRoundOff);
+  EXPECT_LT((products - products.transpose()).norm(), kRoundOff * products.norm());
+  // PSD up to the eigen-solver's backward error (n ε ‖H‖ ≈ 1e-13 ‖H‖ here).
+  EXPECT_GE(min_eigenvalue(full), -kRoundOff * full.norm());
+}
+
+INSTANTIATE_TEST_SUITE_P(EnergyTerms, WholeTerm, ::testing::ValuesIn(kTerms),
+                         [](const auto& info) { return info.param; });
+
+namespace {
+
+/// The bodies' surfaces at x, one SurfaceMesh per body, for the exact intersection test.
+std::vector<SurfaceMesh> body_surfaces(const Model& model, const Eigen::MatrixX3d& x) {
+  std::vector<SurfaceMesh> out;
+  for (const BodyModel& body : model.bodies) {
+    SurfaceMesh s;
+    s.V = x.middleRows(body.vertex_begin, body.vertex_end - body.vertex_begin);
+    s.F = model.mesh.F.middleRows(body.face_begin, body.face_end - body.face_begin).array() - body.vertex_begin;
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST(EnergyTermsMaxStep, BarrierStepNeverReachesAnIntersection) {
+  Fixture f;
+  const Model& model = f.model;
+  const Eigen::MatrixX3d x = model.surface(f.q);
+  const Configuration c{f.q, x};
+  f.step.barrier.update(c);
+  ASSERT_FALSE(find_intersection(body_surfaces(model, x)).has_value());
+  // Push the block 2 cm down and the pad 1 cm down (gaps are ≈ 5 mm): the full step goes
+  // through the pad and the ground.
+  Eigen::VectorXd dq = Eigen::VectorXd::Zero(f.q.size());
+  dq[model.bodies[body_index(model, "block")].dof + 1] = -0.02;
+  const BodyModel& pad = model.bodies[body_index(model, "pad")];
+  for (int i = pad.node_begin; i < pad.node_end; ++i) dq[model.nodes.dof[i] + 1] = -0.01;
+  const Eigen::MatrixX3d dx = model.surface_step(dq);
+  ASSERT_TRUE(find_intersection(body_surfaces(model, x + dx)).has_value()) << "the test direction must cross a surface";
+  const double alpha = f.step.barrier.max_step(c, dq, dx);
+  EXPECT_GT(alpha, 0.0);
+  EXPECT_LT(alpha, 1.0);
+  for (const double t : {0.25, 0.5, 0.9, 0.99, 1.0}) {
+    const Eigen::VectorXd q_t = f.q + t * alpha * dq;
+    const Eigen::MatrixX3d x_t = model.surface(q_t);
+    EXPECT_FALSE(find_intersection(body_surfaces(model, x_t)).has_value()) << "t = " << t;
+    f.step.barrier.update({q_t, x_t});
+    const double e = f.step.barrier.value({q_t, x_t});
+    EXPECT_TRUE(std::isfinite(e)) << "t = " << t;
+    EXPECT_GT(f.step.barrier.min_active_distance({q_t, x_t}), 0.0) << "t = " << t;
+  }
+  // Away from every contact nothing bounds the step.
+  Eigen::VectorXd up = Eigen::VectorXd::Zero(f.q.size());
+  up[model.bodies[body_index(model, "block")].dof + 1] = 0.01;
+  f.step.barrier.update(c);
+  EXPECT_EQ(f.step.barrier.max_step(c, up, model.surface_step(up)), 1.0);
+  // The other terms never bound a step.
+  for (EnergyTerm* t : std::vector<EnergyTerm*>{&f.step.inertia, &f.step.orthogonality, &f.step.elasticity,
+                                                &*f.step.friction, &f.step.damping})
+    EXPECT_EQ(t->max_step(c, dq, dx), 1.0) << t->name();
+}
+
+TEST(EnergyTermsMaxStep, JointStepNeverCrossesTheHingeLimit) {
+  Fixture f;
+  const Model& model = f.model;
+  const BodyModel& block = model.bodies[body_index(model, "block")];
+  const Eigen::MatrixX3d x = model.surface(f.q);
+  const Configuration c{f.q, x};
+  // Turn the block by 0.1 rad about the hinge axis, past its upper limit (gap ≈ 0.03 rad).
+  const abd::Vector12d qb = f.q.segment<12>(block.dof);
+  Eigen::VectorXd dq = Eigen::VectorXd::Zero(f.q.size());
+  dq.segment<12>(block.dof) = abd::rigid_motion(qb, Eigen::Vector3d::Zero(), Eigen::Vector3d(0, 1, 0), 0.1) - qb;
+  const auto smallest_gap = [&](const Eigen::VectorXd& q) {
+    double gap = std::numeric_limits<double>::infinity();
+    for (const auto& [p, v] : f.step.joints.potentials()) gap = std::min(gap, p.gap(measure(p.measure, v.gather(q))));
+    return gap;
+  };
+  ASSERT_GT(smallest_gap(f.q), 0.0);
+  ASSERT_LT(smallest_gap(f.q + dq), 0.0) << "the test direction must cross the limit";
+  const double alpha = f.step.joints.max_step(c, dq, model.surface_step(dq));
+  EXPECT_GT(alpha, 0.0);
+  EXPECT_LT(alpha, 1.0);
+  for (const double t : {0.5, 0.9, 1.0}) {
+    const Eigen::VectorXd q_t = f.q + t * alpha * dq;
+    const Eigen::MatrixX3d x_t = model.surface(q_t);
+    EXPECT_GT(smallest_gap(q_t), 0.0) << "t = " << t;
+    EXPECT_TRUE(std::isfinite(f.step.joints.value({q_t, x_t}))) << "t = " << t;
+  }
+}
