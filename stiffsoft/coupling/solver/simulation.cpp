@@ -22,9 +22,7 @@ std::string linear_solver_name(const Model& model, const SimulationSettings& s) 
                                 "(cholmod or auto); their eliminated equalities leave no DOF blocks for PETSc");
   return s.linear_solver;
 }
-}  // namespace
 
-namespace {
 /// The settings, once validate() has accepted them.
 const SimulationSettings& validated(const SimulationSettings& settings) {
   validate(settings);
