@@ -1,5 +1,7 @@
 #include <stiffsoft/io/recorder.hpp>
 
+#include <stdexcept>
+
 #include <stiffsoft/io/atomic_file.hpp>
 #include <stiffsoft/io/simulation_frame.hpp>
 #include <stiffsoft/scene/scene_loader.hpp>
@@ -8,8 +10,11 @@ namespace stiffsoft {
 
 namespace {
 
-/// Creates `out` and writes the resolved scene into it; returns `out`.
+/// Creates `out` and writes the resolved scene into it; returns `out`. std::invalid_argument
+/// when `out` is something other than a folder (a file, say).
 const std::filesystem::path& prepared_folder(const std::filesystem::path& out, const SceneDescription& scene) {
+  if (std::filesystem::exists(out) && !std::filesystem::is_directory(out))
+    throw std::invalid_argument("output folder " + out.string() + ": exists and is not a folder");
   std::filesystem::create_directories(out);
   write_file_atomically(out / "scene.resolved.json",
                         [&](std::ostream& os) { os << resolved_scene_json(scene).dump(2) << '\n'; });

@@ -1,6 +1,7 @@
 #include <stiffsoft/scene/scene_loader.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -65,7 +66,12 @@ struct JsonReader {
   }
 };
 
-// Joints: unique names, existing and distinct bodies, usable axes and limits.
+/// True for a name with no visible character: "", "   ", "\t" (ParaView blocks, errors and
+/// joints refer to bodies by name).
+bool is_blank(const std::string& name) {
+  return std::all_of(name.begin(), name.end(), [](unsigned char c) { return std::isspace(c); });
+}
+
 /// contact.pairs: both bodies exist, each pair at most once (in either order).
 void check_contact_pairs(const Json& scene, const std::string& file,
                          const std::unordered_map<std::string, std::size_t>& bodies) {
@@ -84,6 +90,7 @@ void check_contact_pairs(const Json& scene, const std::string& file,
   }
 }
 
+// Joints: unique names, existing and distinct bodies, usable axes and limits.
 void check_joint_relations(const Json& scene, const std::string& file,
                            const std::unordered_map<std::string, std::size_t>& bodies) {
   std::unordered_map<std::string, std::size_t> first_use;
@@ -92,7 +99,7 @@ void check_joint_relations(const Json& scene, const std::string& file,
     const std::string at = "joints[" + std::to_string(i) + "]";
     JointDescription j;
     JsonReader::read(joints[i], j);
-    if (j.name.empty()) throw SceneError(file, at + ".name", "must not be empty");
+    if (is_blank(j.name)) throw SceneError(file, at + ".name", "must not be empty or only white space");
     const auto [it, inserted] = first_use.emplace(j.name, i);
     if (!inserted)
       throw SceneError(file, at + ".name",
@@ -153,7 +160,7 @@ void check_relations(const Json& scene, const std::string& file) {
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const std::string at = "bodies[" + std::to_string(i) + "]";
     const std::string name = bodies[i].at("name").get<std::string>();
-    if (name.empty()) throw SceneError(file, at + ".name", "must not be empty");
+    if (is_blank(name)) throw SceneError(file, at + ".name", "must not be empty or only white space");
     const auto [it, inserted] = first_use.emplace(name, i);
     if (!inserted)
       throw SceneError(file, at + ".name",

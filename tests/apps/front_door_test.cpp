@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "scene_helpers.hpp"
 
 using namespace stiffsoft;
@@ -116,4 +118,19 @@ TEST(FrontDoor, TheRecorderWritesWhatStiffsoftRunWrites) {
   EXPECT_EQ(stiffsoft::testing::read_text(out / "stats.csv").substr(0, names[0].size() + names[1].size() + 1), "step,time");
   EXPECT_EQ(load_scene(out / "scene.resolved.json").bodies.size(), 2u);
   fs::remove_all(out);
+}
+
+TEST(FrontDoor, TheRecorderRefusesAnOutputFolderThatIsAFile) {
+  const fs::path dir = stiffsoft::testing::fresh_folder("stiffsoft_recorder_file");
+  const fs::path file = dir / "taken";
+  std::ofstream(file) << "not a folder";
+  SceneSimulation run = make_simulation(box_on_slab());
+  try {
+    Recorder recorder(file, run.scene, run.simulation);
+    FAIL() << "a file was taken for the output folder";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "output folder " + file.string() + ": exists and is not a folder");
+  }
+  EXPECT_EQ(stiffsoft::testing::read_text(file), "not a folder");  // nothing already written is lost
+  fs::remove_all(dir);
 }
