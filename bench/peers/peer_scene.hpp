@@ -1,7 +1,7 @@
 #pragma once
 /// @file A stiffsoft scene as every engine of the peer benchmark sees it: rigid bodies in
 /// their centre-of-mass frames, with the mass properties, poses and velocities that
-/// io/scene_builder computed for stiffsoft, plus the stiffsoft Model and settings themselves.
+/// the scene builder (stiffsoft/scene) computed for stiffsoft, plus the stiffsoft Model and settings themselves.
 
 #include <Eigen/Core>
 #include <filesystem>
@@ -60,7 +60,7 @@ struct PeerScene {
   int dynamic_bodies() const;
 };
 
-/// Loads `file` with io/scene_loader + io/scene_builder (the same path `stiffsoft run` takes),
+/// Loads `file` with prepare_scene() (the same path `stiffsoft run` takes),
 /// sets the time step to `dt` and turns every body into a PeerBody. Throws std::runtime_error
 /// for what the peers cannot represent: kinematic bodies, soft bodies.
 PeerScene load_peer_scene(const std::filesystem::path& file, double dt);
