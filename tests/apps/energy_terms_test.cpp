@@ -471,6 +471,27 @@ TEST_P(WholeTerm, AssembledHessianIsSymmetricPositiveSemiDefinite) {
   EXPECT_GE(min_eigenvalue(full), -kRoundOff * full.norm());
 }
 
+TEST(EnergyTermsFriction, ReversedSlidesGetTheMajorizerInTheRevisedHessian) {
+  Fixture f;
+  const FrictionTerm& friction = *f.step.friction;
+  const Eigen::VectorXd& q = f.q;
+  const Eigen::MatrixX3d x = f.model.surface(q);
+  const Configuration c{q, x};
+  f.step.friction->update(c);
+  BlockHessian H(f.model.blocks);
+  friction.add_hessian(c, H);
+  const Eigen::MatrixXd exact = dense(H);
+  // A step onward reverses no slide and leaves H alone; one that carries q back past q_n
+  // reverses every slide, and the sliding stencils gain the majorizer's curvature (only).
+  const Eigen::VectorXd onward = 0.5 * (q - f.step.q_n), back = -2.0 * (q - f.step.q_n);
+  EXPECT_FALSE(friction.revise_hessian(c, onward, f.model.surface_step(onward), H));
+  EXPECT_LT(relative_error(dense(H), exact), kRoundOff);
+  ASSERT_TRUE(friction.revise_hessian(c, back, f.model.surface_step(back), H));
+  const Eigen::MatrixXd revised = dense(H);
+  EXPECT_GT(relative_error(revised, exact), 1e-3);
+  EXPECT_GE(min_eigenvalue(Eigen::MatrixXd(revised - exact)), -kRoundOff * revised.norm());
+}
+
 INSTANTIATE_TEST_SUITE_P(EnergyTerms, WholeTerm, ::testing::ValuesIn(kTerms),
                          [](const auto& info) { return info.param; });
 

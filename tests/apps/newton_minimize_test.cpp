@@ -128,6 +128,7 @@ TEST(NewtonMinimize, QuadraticIsMinimisedByTheFirstNewtonStep) {
   EXPECT_EQ(first.iterations, 1);
   EXPECT_EQ(first.line_search_steps, 1);
   EXPECT_EQ(first.smallest_ccd_step, 1.0);
+  EXPECT_EQ(first.ccd_limited_iterations, 0);
   EXPECT_LT((q - q_star).norm(), 1e-10 * q_star.norm());
 
   // Unbounded: the step to A⁻¹b, then a zero step that meets the stopping rule.
@@ -137,6 +138,44 @@ TEST(NewtonMinimize, QuadraticIsMinimisedByTheFirstNewtonStep) {
   EXPECT_EQ(report.iterations, 2);
   EXPECT_LT((q - q_star).norm(), 1e-10 * q_star.norm());
   EXPECT_NEAR(report.energy, -0.5 * b.dot(q_star), 1e-10 * std::abs(b.dot(q_star)));
+}
+
+/// Adds nothing to E; its step bound is `first` on the first direction and 1 afterwards, as
+/// CCD bounds a step that would reach a contact once.
+class StepBoundTerm final : public EnergyTerm {
+ public:
+  explicit StepBoundTerm(double first) : m_first(first) {}
+  const char* name() const override { return "step bound"; }
+  double value(const Configuration&) const override { return 0; }
+  void add_gradient(const Configuration&, Eigen::VectorXd&) const override {}
+  void add_hessian(const Configuration&, BlockHessian&) const override {}
+  double max_step(const Configuration&, const Eigen::VectorXd&, const Eigen::MatrixX3d&) const override {
+    return m_calls++ == 0 ? m_first : 1.0;
+  }
+
+ private:
+  double m_first;
+  mutable int m_calls = 0;
+};
+
+TEST(NewtonMinimize, ReportsTheIterationsWhoseStepCcdBounded) {
+  const Model& model = one_body_model();
+  std::mt19937 rng(12);
+  const Eigen::MatrixXd A = random_spd(rng);
+  const Eigen::VectorXd b = random_vector(rng, 1.0);
+  QuadraticTerm term(A, b, model.bodies[0].block);
+  StepBoundTerm bound(0.25);
+  const std::vector<EnergyTerm*> terms{&term, &bound};
+  const std::unique_ptr<LinearSolver> solver = make_linear_solver("cholmod");
+  PhaseTimes times;
+  Eigen::VectorXd q = model.initial_q();
+  const NewtonReport report = newton_minimize(model, terms, q, *solver, NewtonSettings{}, times);
+  EXPECT_TRUE(report.converged) << report.failure;
+  // A quarter of the way, then the rest of the (same) Newton step, then a zero step.
+  EXPECT_EQ(report.iterations, 3);
+  EXPECT_EQ(report.ccd_limited_iterations, 1);
+  EXPECT_EQ(report.smallest_ccd_step, 0.25);
+  EXPECT_LT((q - A.ldlt().solve(b)).norm(), 1e-10 * b.norm());
 }
 
 TEST(NewtonMinimize, StrictlyConvexEnergyConvergesMonotonicallyToItsMinimiser) {

@@ -1,9 +1,11 @@
 /// Lagged smoothed friction of one stencil: normal force and bases from the lagged state,
-/// gradient and Hessian against finite differences below and above ε, PSD projection,
+/// gradient and Hessian against finite differences below and above ε, PSD projection, the
+/// majorizer Newton uses where a step would reverse a slide,
 /// zero without friction, and the sliding force magnitude μλ.
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <random>
@@ -114,6 +116,48 @@ TEST(FrictionPotential, ProjectedHessianIsPsd) {
         EXPECT_LT((Hp - H).norm(), 1e-10 * H.norm()) << int(kind) << " y " << y;
         EXPECT_TRUE(Hp.allFinite());
       }
+    }
+  }
+}
+
+TEST(FrictionPotential, MajorizerIsPsdAboveTheExactHessianAndItsQuadraticAboveD) {
+  const double dhat = 0.1, kappa = 1e4, mu = 0.5, eps = 1e-3;
+  for (PrimitivePair kind : kAllPairs) {
+    std::mt19937 rng(820 + int(kind));
+    std::normal_distribution<double> normal;
+    for (int trial = 0; trial < 50; ++trial) {
+      const FrictionStencil f = make_friction_stencil({kind}, stencil_at_distance(kind, 0.03, rng), dhat, kappa);
+      for (double y : {0.0, 0.3 * eps, 0.999 * eps, 3 * eps, 50 * eps}) {
+        const Vector12d dx = step_with_tangential_norm(f, y, rng);
+        const Matrix12d H = friction_potential_hessian(f, dx, mu, eps, false);
+        const Matrix12d Hm = friction_majorizer_hessian(f, dx, mu, eps);
+        ASSERT_TRUE(Hm.allFinite());
+        EXPECT_GE(min_eigenvalue(Hm), -1e-10 * Hm.norm()) << int(kind) << " y " << y;
+        EXPECT_GE(min_eigenvalue(Matrix12d(Hm - H)), -1e-10 * Hm.norm()) << int(kind) << " y " << y;
+        // Its quadratic lies above D along every direction, near and far, including steps
+        // that reverse the slide.
+        const double D0 = friction_potential(f, dx, mu, eps);
+        const Vector12d g = friction_potential_gradient(f, dx, mu, eps);
+        for (int k = 0; k < 20; ++k) {
+          Vector12d v;
+          for (int i = 0; i < 12; ++i) v[i] = normal(rng);
+          v *= std::pow(10.0, -1.0 + 0.2 * k) * std::max(y, eps) / v.norm();
+          const double model = D0 + g.dot(v) + 0.5 * v.dot(Hm * v);
+          EXPECT_LE(friction_potential(f, dx + v, mu, eps), model + 1e-12 * std::max(1.0, std::abs(model)))
+              << int(kind) << " y " << y << " |v| " << v.norm();
+        }
+        if (y < 3 * eps) continue;
+        // Sliding: reversing the slide (u → −u) is exactly where the exact Hessian's quadratic
+        // falls below D (it has no curvature along û), and where the step test fires.
+        const Vector12d back = -2 * dx;
+        EXPECT_GT(friction_potential(f, dx + back, mu, eps), D0 + g.dot(back) + 0.5 * back.dot(H * back));
+        EXPECT_TRUE(step_reverses_slide(f, dx, back, eps));
+        EXPECT_FALSE(step_reverses_slide(f, dx, Vector12d(0.5 * dx), eps));   // slides on
+        EXPECT_FALSE(step_reverses_slide(f, dx, Vector12d(-0.5 * dx), eps));  // slows, same side
+      }
+      // Sticking (‖u‖ < ε): the exact Hessian is stiff there already; the test never fires.
+      const Vector12d stick = step_with_tangential_norm(f, 0.5 * eps, rng);
+      EXPECT_FALSE(step_reverses_slide(f, stick, Vector12d(-4 * stick), eps));
     }
   }
 }

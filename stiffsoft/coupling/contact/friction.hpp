@@ -135,4 +135,27 @@ inline Matrix12d friction_potential_hessian(const FrictionStencil& f, const Vect
   return mu * f.normal_force * T.transpose() * M * T;
 }
 
+/// The isotropic majorizer of D's Hessian: μ λ Tᵀ (f₁(y)/y) I T, N/m. Its quadratic model lies
+/// above D in every direction (f₀(‖v‖) is concave in ‖v‖², so the quadratic in v that touches
+/// it at u with slope f₁(y)/y bounds it from above), and it exceeds the exact Hessian by
+/// μ λ Tᵀ (f₁/y − f₁') û ûᵀ T ⪰ 0. Where the exact Hessian has no curvature along the slide
+/// (y ≥ ε), a Newton step sized by the other terms can run u through the stick zone and out the
+/// other side, where D has risen linearly; a step on this model stops short of reversing it.
+inline Matrix12d friction_majorizer_hessian(const FrictionStencil& f, const Vector12d& dx, double mu,
+                                            double epsv_h) {
+  if (mu == 0.0 || f.normal_force == 0.0) return Matrix12d::Zero();
+  const Eigen::Matrix<double, 2, 12> T = tangent_operator(f);
+  const double y = (T * dx).norm();
+  return mu * f.normal_force * friction_f1_over_y(y, epsv_h) * T.transpose() * T;
+}
+
+/// Whether the step dx_step reverses the slide of a stencil displaced by dx: it slides
+/// (‖u‖ ≥ ε) and the full step ends on the far side, u·(u + T dx_step) < 0.
+inline bool step_reverses_slide(const FrictionStencil& f, const Vector12d& dx, const Vector12d& dx_step,
+                                double epsv_h) {
+  const Eigen::Matrix<double, 2, 12> T = tangent_operator(f);
+  const Eigen::Vector2d u = T * dx;
+  return u.norm() >= epsv_h && u.dot(u + T * dx_step) < 0;
+}
+
 }  // namespace stiffsoft::contact

@@ -22,14 +22,9 @@ void update_all(const std::vector<EnergyTerm*>& terms, const Configuration& c) {
 
 /// The Newton direction p = −H⁻¹g; if the projected Hessian is numerically singular, shifts
 /// its diagonal until the factorisation succeeds.
-bool newton_direction(const Model& model, const std::vector<EnergyTerm*>& terms, const Configuration& c,
-                      const Eigen::VectorXd& g, LinearSolver& solver, std::vector<std::int64_t>& pattern,
-                      PhaseTimes& times, const ReducedBasis* basis, Eigen::VectorXd& p) {
-  BlockHessian H(model.blocks);
-  {
-    ScopedTimer timer(times.assembly);
-    for (const EnergyTerm* t : terms) t->add_hessian(c, H);
-  }
+bool newton_direction(const BlockHessian& H, const Eigen::VectorXd& g, LinearSolver& solver,
+                      std::vector<std::int64_t>& pattern, PhaseTimes& times, const ReducedBasis* basis,
+                      Eigen::VectorXd& p) {
   ScopedTimer timer(times.solve);
   Eigen::SparseMatrix<double> A = basis ? basis->reduce_upper(H.upper()) : H.upper();
   const Eigen::VectorXd b = basis ? Eigen::VectorXd(-basis->reduce(g)) : Eigen::VectorXd(-g);
@@ -87,7 +82,12 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
     eta = forcing_term(g_norm, g_norm_previous, eta, settings.forcing);
     g_norm_previous = g_norm;
     solver.set_relative_tolerance(eta);
-    const bool solved = newton_direction(model, terms, c, g, solver, pattern, times, basis, p);
+    BlockHessian H(model.blocks);
+    {
+      ScopedTimer timer(times.assembly);
+      for (const EnergyTerm* t : terms) t->add_hessian(c, H);
+    }
+    const bool solved = newton_direction(H, g, solver, pattern, times, basis, p);
     const LinearSolveReport& linear = solver.last_report();
     report.linear_iterations += linear.iterations;
     report.linear_fallbacks += linear.fallback_used;
@@ -99,7 +99,22 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
       report.failure = "the linear solve failed even with a regularised Hessian (" + report.linear_failure + ")";
       break;
     }
-    const Eigen::MatrixX3d dx = model.surface_step(p);
+    Eigen::MatrixX3d dx = model.surface_step(p);
+    bool revised = false;
+    {
+      ScopedTimer timer(times.assembly);
+      for (const EnergyTerm* t : terms) revised = t->revise_hessian(c, p, dx, H) || revised;
+    }
+    if (revised) {
+      // Same sparsity (the revision only changes existing stencils' blocks): no new analysis.
+      // Should the revised solve fail, the first direction stands.
+      Eigen::VectorXd p_revised(p.size());
+      if (newton_direction(H, g, solver, pattern, times, basis, p_revised)) {
+        p.swap(p_revised);
+        dx = model.surface_step(p);
+        ++report.revised_directions;
+      }
+    }
     report.last_step_speed = (dx.rows() ? dx.rowwise().norm().maxCoeff() : 0.0) / settings.h;
     // A step below the tolerance is still taken (when it lowers E): skipping it would freeze
     // a body whose per-step velocity change is below ε_d, e.g. a block starting to slide.
@@ -107,6 +122,7 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
     double alpha = 1.0;
     for (const EnergyTerm* t : terms) alpha = std::min(alpha, t->max_step(c, p, dx));
     report.smallest_ccd_step = std::min(report.smallest_ccd_step, alpha);
+    report.ccd_limited_iterations += alpha < 1;
     bool accepted = false;
     Eigen::MatrixX3d x_trial;
     for (int ls = 0; alpha > 0 && ls < settings.max_line_search; ++ls) {

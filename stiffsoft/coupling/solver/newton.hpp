@@ -29,6 +29,8 @@ struct NewtonReport {
   int iterations = 0;            ///< Newton iterations (linear solves)
   int line_search_steps = 0;     ///< energy evaluations in line searches
   double smallest_ccd_step = 1;  ///< smallest α bound returned by CCD
+  int ccd_limited_iterations = 0;  ///< iterations whose CCD bound α was < 1
+  int revised_directions = 0;      ///< directions solved again after a term revised its Hessian (friction)
   double energy = 0;             ///< E at the result
   double last_step_speed = 0;    ///< max surface step / h of the last direction (m/s)
   int linear_iterations = 0;     ///< Krylov iterations summed over the linear solves (0 for direct solvers)

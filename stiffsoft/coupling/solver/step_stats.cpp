@@ -10,6 +10,8 @@ const std::vector<StepStatsColumn>& step_stats_columns() {
       {"linear_iterations", [](const StepStats& s) { return double(s.newton.linear_iterations); }},
       {"line_search_steps", [](const StepStats& s) { return double(s.newton.line_search_steps); }},
       {"smallest_ccd_step", [](const StepStats& s) { return s.newton.smallest_ccd_step; }},
+      {"ccd_limited_iterations", [](const StepStats& s) { return double(s.newton.ccd_limited_iterations); }},
+      {"revised_directions", [](const StepStats& s) { return double(s.newton.revised_directions); }},
       {"converged", [](const StepStats& s) { return s.newton.converged ? 1.0 : 0.0; }},
       {"contacts", [](const StepStats& s) { return double(s.contacts); }},
       {"smallest_distance", [](const StepStats& s) { return s.smallest_distance; }},

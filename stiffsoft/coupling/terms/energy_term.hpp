@@ -35,6 +35,14 @@ class EnergyTerm {
                           const Eigen::MatrixX3d& /*dx*/) const {
     return 1.0;
   }
+  /// Called with each Newton direction dq (surface step dx) and the Hessian H it was solved
+  /// with. A term whose Hessian model should depend on where the step goes (friction: a slide
+  /// the full step would reverse) may add the change of its model to H and return true; Newton
+  /// then solves once more with the revised H.
+  virtual bool revise_hessian(const Configuration&, const Eigen::VectorXd& /*dq*/, const Eigen::MatrixX3d& /*dx*/,
+                              BlockHessian& /*H*/) const {
+    return false;
+  }
   /// After each accepted Newton iteration (e.g. adapt the barrier stiffness).
   virtual void end_iteration(const Configuration&) {}
 };

@@ -24,8 +24,12 @@ class FrictionTerm final : public EnergyTerm {
   double value(const Configuration& c) const override;
   /// See EnergyTerm::add_gradient.
   void add_gradient(const Configuration& c, Eigen::VectorXd& g) const override;
-  /// See EnergyTerm::add_hessian.
+  /// See EnergyTerm::add_hessian (the PSD-projected exact Hessian of every stencil).
   void add_hessian(const Configuration& c, BlockHessian& H) const override;
+  /// On every stencil whose slide the full step dx would reverse (contact/friction.hpp,
+  /// step_reverses_slide), replaces its Hessian in H by the majorizer; true if any.
+  bool revise_hessian(const Configuration& c, const Eigen::VectorXd& dq, const Eigen::MatrixX3d& dx,
+                      BlockHessian& H) const override;
   /// Friction force −∇_x D on every surface vertex, |V|×3 (energy units, as the barrier's).
   Eigen::MatrixX3d vertex_forces(const Configuration& c) const;
   /// Number of lagged friction stencils.
