@@ -109,7 +109,9 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
       // Same sparsity (the revision only changes existing stencils' blocks): no new analysis.
       // Should the revised solve fail, the first direction stands.
       Eigen::VectorXd p_revised(p.size());
-      if (newton_direction(H, g, solver, pattern, times, basis, p_revised)) {
+      const bool resolved = newton_direction(H, g, solver, pattern, times, basis, p_revised);
+      report.linear_iterations += solver.last_report().iterations;
+      if (resolved) {
         p.swap(p_revised);
         dx = model.surface_step(p);
         ++report.revised_directions;
