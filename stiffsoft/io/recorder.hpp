@@ -32,8 +32,9 @@ namespace stiffsoft {
 class Recorder {
  public:
   /// Creates `out`, writes `scene.resolved.json` and the frame at the simulation's present
-  /// state; std::invalid_argument when `out` exists and is not a folder. `scene` is the resolved scene `sim` was made from (SceneSimulation::scene); `sim`
-  /// must outlive the recorder.
+  /// state; std::invalid_argument when `out` exists and is not a folder. `scene` is the
+  /// resolved scene `sim` was made from (SceneSimulation::scene); `sim` must outlive the
+  /// recorder.
   Recorder(const std::filesystem::path& out, const SceneDescription& scene, const Simulation& sim);
   Recorder(const Recorder&) = delete;
   Recorder& operator=(const Recorder&) = delete;

@@ -48,21 +48,16 @@ void FrictionTerm::add_hessian(const Configuration& c, BlockHessian& H) const {
 
 bool FrictionTerm::revise_hessian(const Configuration& c, const Eigen::VectorXd&, const Eigen::MatrixX3d& dx,
                                   BlockHessian& H) const {
-  std::vector<char> reversed(m_stencils.size(), 0);
-  std::vector<contact::Matrix12d> change(m_stencils.size());
-  tbb::parallel_for(size_t(0), m_stencils.size(), [&](size_t k) {
-    const contact::Vector12d u = displacement(c, k);
-    if (!contact::step_reverses_slide(m_stencils[k], u, gather(dx, m_vertices[k]), m_epsv_h)) return;
-    reversed[k] = 1;
-    change[k] = contact::friction_majorizer_hessian(m_stencils[k], u, m_mu, m_epsv_h) -
-                contact::friction_potential_hessian(m_stencils[k], u, m_mu, m_epsv_h, true);
-  });
   bool revised = false;
-  for (size_t k = 0; k < m_stencils.size(); ++k)
-    if (reversed[k]) {
-      StencilJacobian(m_model, m_vertices[k]).scatter_hessian(change[k], H);
-      revised = true;
-    }
+  for (size_t k = 0; k < m_stencils.size(); ++k) {
+    const contact::Vector12d u = displacement(c, k);
+    if (!contact::step_reverses_slide(m_stencils[k], u, gather(dx, m_vertices[k]), m_epsv_h)) continue;
+    StencilJacobian(m_model, m_vertices[k])
+        .scatter_hessian(contact::friction_majorizer_hessian(m_stencils[k], u, m_mu, m_epsv_h) -
+                             contact::friction_potential_hessian(m_stencils[k], u, m_mu, m_epsv_h, true),
+                         H);
+    revised = true;
+  }
   return revised;
 }
 
