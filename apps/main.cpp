@@ -43,6 +43,10 @@ int main(int argc, char** argv) {
   run_cmd->add_option("-o,--out", run.out, "output folder")->required();
   run_cmd->add_option("--steps", run.steps, "number of steps (default: the scene's duration)")->check(CLI::PositiveNumber);
   run_cmd->add_option("--threads", run.threads, "worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  run_cmd->add_option("--max-tets", run.limits.max_tets, "largest expected tetrahedron count of one soft body, estimated before meshing")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  run_cmd->add_option("--max-triangles", run.limits.max_triangles, "largest triangle count of one primitive body")
+      ->check(CLI::PositiveNumber)->capture_default_str();
 
   std::filesystem::path pvd;
   CLI::App* check_cmd = app.add_subcommand("check", "exact intersection check of every frame of a .pvd series");

@@ -8,10 +8,12 @@
 #include <optional>
 
 #include <stiffsoft/coupling/linear_solver/petsc_session.hpp>
+#include <stiffsoft/coupling/solver/physics_error.hpp>
 #include <stiffsoft/io/recorder.hpp>
 #include <stiffsoft/scene/make_simulation.hpp>
 
 #include "progress.hpp"
+#include "step_log.hpp"
 
 namespace stiffsoft {
 
@@ -20,7 +22,7 @@ int run_scene(const RunOptions& options) {
   if (options.threads > 0)
     threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, options.threads);
 
-  SceneSimulation run = make_simulation(options.scene);
+  SceneSimulation run = make_simulation(options.scene, options.limits);
   const SceneDescription& scene = run.scene;
   Simulation& sim = run.simulation;
   const Model& model = sim.model();
@@ -34,27 +36,32 @@ int run_scene(const RunOptions& options) {
   std::optional<Recorder> recorder;
   if (PetscSession::rank() == 0) recorder.emplace(options.out, scene, sim);
 
-  int failed = 0;
+  StepLog log;
   Progress progress(total);
-  for (int k = 0; k < total; ++k) {
-    const StepStats s = sim.step();
-    if (recorder) recorder->record(s, k + 1 == total);
-    if (!s.newton.linear_failure.empty())
-      spdlog::warn("step {} (t = {:.4f} s): linear solver ({}) failed at {}", s.step, s.time, settings.linear_solver,
-                   s.newton.linear_failure);
-    if (!s.newton.converged) {
-      ++failed;
-      spdlog::warn("step {} (t = {:.4f} s): Newton did not converge after {} iterations: {} (last step speed {:.3g} m/s, tolerance {:.3g} m/s)",
-                   s.step, s.time, s.newton.iterations, s.newton.failure, s.newton.last_step_speed, settings.tolerance);
+  try {
+    for (int k = 0; k < total; ++k) {
+      const StepStats s = sim.step();
+      if (recorder) recorder->record(s, k + 1 == total);
+      log.record(s, sim);
+      if (recorder) progress.update(s.step, s.time, s.newton.iterations);
     }
-    if (recorder) progress.update(s.step, s.time, s.newton.iterations);
+  } catch (const PhysicsError& e) {
+    // The step was not taken: everything written so far stays, up to the last good step.
+    if (recorder) {
+      progress.finish();
+      recorder->finish();
+    }
+    spdlog::error("{}", e.what());
+    if (recorder)
+      spdlog::error("stopped: wrote {} frames to {} (up to t = {:.4f} s); {}", recorder->frame_count(),
+                    recorder->pvd_path().string(), sim.time(), log.summary(sim.state().step));
+    return 3;
   }
-  if (!recorder) return failed ? 3 : 0;
+  if (!recorder) return log.unconverged() ? 3 : 0;
   progress.finish();
   recorder->finish();
-  spdlog::info("wrote {} frames to {}; {} of {} steps did not converge", recorder->frame_count(),
-               recorder->pvd_path().string(), failed, total);
-  return failed ? 3 : 0;
+  spdlog::info("wrote {} frames to {}; {}", recorder->frame_count(), recorder->pvd_path().string(), log.summary(total));
+  return log.unconverged() ? 3 : 0;
 }
 
 }  // namespace stiffsoft

@@ -28,6 +28,7 @@ stiffsoft::SceneDescription ball_on_box() {
   scene.time.dt = 0.01;
   scene.time.duration = 1.5;
   scene.contact.mu = 0.3;
+  scene.contact.dhat = 0.0005;  // m: bodies must start more than d̂ apart (the box starts 1 mm above the ground)
 
   stiffsoft::PrimitiveShape slab;
   slab.type = stiffsoft::PrimitiveShape::Type::Box;

@@ -1,5 +1,6 @@
 #include <stiffsoft/meshing/primitive.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -124,6 +125,19 @@ SurfaceMesh make_torus(double R, double r, int n) {
 }
 
 }  // namespace
+
+double primitive_triangle_count(const PrimitiveShape& shape) {
+  using Type = PrimitiveShape::Type;
+  const double n = shape.resolution;
+  switch (shape.type) {
+    case Type::Box:
+    case Type::Plane: return 12;
+    case Type::Sphere: return 2 * n * (std::max(2, shape.resolution / 2) - 1);
+    case Type::Cylinder: return 4 * n;
+    case Type::Torus: return 2 * n * std::max(3, shape.resolution / 2);
+  }
+  return 0;
+}
 
 SurfaceMesh make_primitive(const PrimitiveShape& shape) {
   using Type = PrimitiveShape::Type;

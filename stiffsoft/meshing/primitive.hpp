@@ -26,4 +26,9 @@ struct PrimitiveShape {
 /// A closed, consistently outward-oriented triangle mesh of the shape.
 SurfaceMesh make_primitive(const PrimitiveShape& shape);
 
+/// The number of triangles make_primitive() makes for the shape, counted without making them
+/// (so a huge resolution can be refused first): box and plane 12; with n = resolution, sphere
+/// 2n (max(2, ⌊n/2⌋) − 1), cylinder 4n, torus 2n max(3, ⌊n/2⌋). A double, so it cannot overflow.
+double primitive_triangle_count(const PrimitiveShape& shape);
+
 }  // namespace stiffsoft

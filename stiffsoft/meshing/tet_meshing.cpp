@@ -76,6 +76,31 @@ void require_step_header(const std::filesystem::path& file) {
     throw std::runtime_error(file.string() + ": not a STEP file (expected 'ISO-10303-21;' first)");
 }
 
+/// Throws TetCountLimitError when the loaded solids, meshed at options.h, are expected to give more
+/// than options.max_tets tetrahedra (see TetMeshOptions::max_tets). A .geo model may use gmsh's
+/// built-in kernel, which OpenCASCADE's getMass would not know (and would log as an error that
+/// fails the session), so it is bounded by its boxes.
+void check_expected_tets(const gmsh::vectorpair& volumes, const TetMeshOptions& options, bool geo,
+                         const std::string& what) {
+  double volume = 0;
+  for (const auto& [dim, tag] : volumes) {
+    double v = 0;
+    if (geo) {
+      double x0, y0, z0, x1, y1, z1;
+      gmsh::model::getBoundingBox(dim, tag, x0, y0, z0, x1, y1, z1);
+      v = (x1 - x0) * (y1 - y0) * (z1 - z0);
+    } else {
+      gmsh::model::occ::getMass(dim, tag, v);
+    }
+    volume += v;
+  }
+  const double expected = expected_tet_count(volume, options.h);
+  if (expected > options.max_tets)
+    throw TetCountLimitError(what + ": about " + std::to_string(expected) + " tetrahedra expected at h = " +
+                                 std::to_string(options.h) + " m, more than " + std::to_string(options.max_tets),
+                             volume, expected);
+}
+
 TetMesh mesh_cad_file(const std::filesystem::path& file, const TetMeshOptions& options, bool geo) {
   const std::string what = file.string();
   require_readable(file);
@@ -109,12 +134,15 @@ TetMesh mesh_cad_file(const std::filesystem::path& file, const TetMeshOptions& o
     gmsh::vectorpair volumes;
     gmsh::model::getEntities(volumes, 3);
     if (volumes.empty()) throw std::runtime_error(what + ": defines no volume (solid) to mesh");
+    if (options.max_tets > 0) check_expected_tets(volumes, options, geo, what);
     mesh = generate(what);
   });
   return mesh;
 }
 
 }  // namespace
+
+double expected_tet_count(double volume, double h) { return volume / (h * h * h / (6.0 * std::sqrt(2.0))); }
 
 TetMesh make_tet_mesh(const PrimitiveShape& shape, const TetMeshOptions& options) {
   using Type = PrimitiveShape::Type;

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include <stiffsoft/meshing/primitive.hpp>
@@ -30,6 +31,36 @@ struct TetMeshOptions {
   double feature_angle_deg = 40.0;
   /// print gmsh's messages to the terminal (otherwise gmsh prints nothing)
   bool verbose = false;
+  /// CAD (.step, .stp, .brep) and .geo files only, when > 0: the most tetrahedra the mesh may be
+  /// expected to have. Once the geometry is loaded and before gmsh meshes it, the count is
+  /// estimated as V / (h³/(6√2)) (regular tetrahedra of edge h) from the solids' volume V
+  /// (OpenCASCADE's for CAD; the solids' bounding boxes for .geo, an upper bound), and
+  /// TetCountLimitError is thrown above it. Not part of the mesh cache's recipe: it decides
+  /// whether to mesh, not how. 0: no limit. (Primitives and surfaces have a known volume: their
+  /// callers check before meshing.)
+  double max_tets = 0;
+};
+
+/// The expected number of tetrahedra of a solid of volume V (m³) meshed at edge length h (m):
+/// V / (h³ / (6√2)), as if filled with regular tetrahedra of edge h. gmsh's meshes of box,
+/// slab, sphere and torus come out at 0.55–0.7 of it (measured; docs/robustness.md), so it errs
+/// high by a factor of about 1.7. A double: huge values do not overflow.
+double expected_tet_count(double volume, double h);
+
+/// Thrown by make_tet_mesh when a file's expected tet count is above TetMeshOptions::max_tets.
+class TetCountLimitError : public std::runtime_error {
+ public:
+  /// what: the message; volume: the estimate's V (m³); expected: the estimated tet count
+  TetCountLimitError(const std::string& what, double volume, double expected)
+      : std::runtime_error(what), volume_(volume), expected_(expected) {}
+  /// the volume the estimate used (m³)
+  double volume() const { return volume_; }
+  /// the estimated number of tetrahedra
+  double expected() const { return expected_; }
+
+ private:
+  double volume_;
+  double expected_;
 };
 
 /// Everything a tet mesh is made from: a primitive, or a file.

@@ -41,13 +41,15 @@ bool is_volume_file(const std::filesystem::path& file) {
   return e == ".msh" || e == ".step" || e == ".stp" || e == ".brep" || e == ".geo";
 }
 
-SurfaceMesh body_surface(const BodyDescription& body, const std::string& file, const std::string& path) {
+SurfaceMesh body_surface(const BodyDescription& body, const ElementLimits& limits, const std::string& file,
+                         const std::string& path) {
   SurfaceMesh mesh;
   if (!body.mesh.primitive && is_volume_file(body.mesh.file)) {
     const SurfaceMesh none;
-    const TetMesh tets = body_tet_mesh(body, soft_mesh_size(body, none, file, path), file, path);
+    const TetMesh tets = body_tet_mesh(body, soft_mesh_size(body, none, file, path), limits, file, path);
     mesh = boundary_surface(tets, body.name).surface;
   } else {
+    check_primitive_triangles(body, limits, file, path);
     try {
       mesh = body.mesh.primitive ? make_primitive(*body.mesh.primitive) : read_surface_mesh(body.mesh.file);
     } catch (const std::exception& e) {
@@ -70,14 +72,18 @@ double soft_mesh_size(const BodyDescription& body, const SurfaceMesh& surface, c
   return (surface.V.colwise().maxCoeff() - surface.V.colwise().minCoeff()).norm() / 8.0;
 }
 
-TetMesh body_tet_mesh(const BodyDescription& body, double h, const std::string& file, const std::string& path) {
+TetMesh body_tet_mesh(const BodyDescription& body, double h, const ElementLimits& limits, const std::string& file,
+                      const std::string& path) {
   TetMeshRecipe recipe;
   recipe.primitive = body.mesh.primitive;
   recipe.file = body.mesh.file;
   recipe.options.h = h;
+  recipe.options.max_tets = double(limits.max_tets);
   CachedTetMesh cached;
   try {
     cached = cached_tet_mesh(recipe);
+  } catch (const TetCountLimitError& e) {
+    throw tet_count_error(body, e.volume(), h, limits, file, path);
   } catch (const std::exception& e) {
     throw SceneError(file, path + ".mesh", "cannot tet-mesh body '" + body.name + "': " + e.what());
   }

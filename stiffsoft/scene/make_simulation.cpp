@@ -5,6 +5,8 @@
 
 #include <stiffsoft/scene/scene_builder.hpp>
 #include <stiffsoft/scene/scene_loader.hpp>
+#include <stiffsoft/scene/scene_text.hpp>
+#include <stiffsoft/scene/start_gaps.hpp>
 
 namespace stiffsoft {
 
@@ -13,7 +15,7 @@ namespace {
 /// Fills the scene's relative defaults (see prepare_scene()) from the model.
 void resolve_relative_defaults(SceneDescription& scene, const Model& model) {
   const double L = model.bounding_box_diagonal();
-  if (!scene.contact.dhat) scene.contact.dhat = 1e-3 * L;
+  if (!scene.contact.dhat) scene.contact.dhat = default_dhat(model);
   if (!scene.contact.eps_v) scene.contact.eps_v = 1e-3 * L;
   if (!scene.solver.tolerance) scene.solver.tolerance = 1e-2 * L;
   if (!scene.output.frame_dt) scene.output.frame_dt = std::max(scene.time.dt, 1.0 / 60.0);
@@ -46,33 +48,41 @@ SimulationSettings simulation_settings(const SceneDescription& scene, const std:
   s.max_iterations = scene.solver.max_iterations;
   s.linear_solver = scene.solver.linear;
   s.krylov_rtol_max = scene.solver.krylov_rtol_max;
+  s.rigidity_bound = scene.solver.rigidity_bound;
   validate(s);
   return s;
 }
 
 /// The model and settings of a scene already checked against the schema.
-PreparedScene prepare_checked(SceneDescription scene, const std::filesystem::path& file) {
-  Model model = build_model(scene, file);
+PreparedScene prepare_checked(SceneDescription scene, const std::filesystem::path& file, const ElementLimits& limits) {
+  Model model = build_model(scene, file, limits);
+  const bool dhat_given = scene.contact.dhat.has_value();
   resolve_relative_defaults(scene, model);
+  if (scene.contact.check_start_gaps) check_start_gaps(model, scene.contact.dhat.value(), dhat_given, file.string());
   SimulationSettings settings = simulation_settings(scene, file.string());
   return {std::move(scene), std::move(model), std::move(settings)};
 }
 
 }  // namespace
 
-PreparedScene prepare_scene(const std::filesystem::path& file) { return prepare_checked(load_scene(file), file); }
-
-PreparedScene prepare_scene(const SceneDescription& scene, const std::string& label) {
-  const std::string file = label.empty() ? scene.name + " (built in code)" : label;
-  SceneDescription checked = load_scene_from_string(resolved_scene_json(scene).dump(), std::filesystem::current_path(),
-                                                    file, scene.name);
-  return prepare_checked(std::move(checked), file);
+PreparedScene prepare_scene(const std::filesystem::path& file, const ElementLimits& limits) {
+  return prepare_checked(load_scene(file), file, limits);
 }
 
-SceneSimulation make_simulation(const std::filesystem::path& file) { return make_simulation(prepare_scene(file)); }
+PreparedScene prepare_scene(const SceneDescription& scene, const std::string& label, const ElementLimits& limits) {
+  const std::string file = label.empty() ? scene.name + " (built in code)" : label;
+  const nlohmann::ordered_json json = resolved_scene_json(scene);
+  check_json_values(json, file);  // NaN and invalid UTF-8 cannot pass through text
+  SceneDescription checked = load_scene_from_string(json.dump(), std::filesystem::current_path(), file, scene.name);
+  return prepare_checked(std::move(checked), file, limits);
+}
 
-SceneSimulation make_simulation(const SceneDescription& scene, const std::string& label) {
-  return make_simulation(prepare_scene(scene, label));
+SceneSimulation make_simulation(const std::filesystem::path& file, const ElementLimits& limits) {
+  return make_simulation(prepare_scene(file, limits));
+}
+
+SceneSimulation make_simulation(const SceneDescription& scene, const std::string& label, const ElementLimits& limits) {
+  return make_simulation(prepare_scene(scene, label, limits));
 }
 
 SceneSimulation make_simulation(PreparedScene prepared) {

@@ -37,11 +37,12 @@ struct ContactPairDescription {
 /// `contact`: the IPC barrier and friction. Lengths in metres, speeds in m/s; an unset value
 /// is relative to the scene's bounding-box diagonal (see docs/units.md).
 struct ContactDescription {
-  std::optional<double> dhat;   ///< barrier activation distance d̂ (m); default 1e-3 × diagonal
+  std::optional<double> dhat;   ///< barrier activation distance d̂ (m); default 1e-3 × diagonal, at most 1 % of the smallest body
   double mu = SimulationSettings{}.mu;  ///< Coulomb friction coefficient, ≥ 0; 0 turns friction off
   std::optional<double> eps_v;  ///< static/kinetic smoothing speed ε_v (m/s); default 1e-3 × diagonal / s
   std::optional<double> kappa;  ///< barrier stiffness (Pa·m, fixed); default adaptive (IPC's rule)
   double damping = SimulationSettings{}.contact_damping;  ///< lagged Rayleigh damping k_d of contacts (s), ≥ 0; 0: none
+  bool check_start_gaps = true;  ///< refuse bodies starting closer than d̂, and d̂ above 1 % of a body's size (start_gaps.hpp)
   std::vector<ContactPairDescription> pairs;  ///< per body pair settings, overriding the above for that pair
 };
 
@@ -51,6 +52,7 @@ struct SolverDescription {
   int max_iterations = NewtonSettings{}.max_iterations;  ///< Newton iteration cap per step, ≥ 1
   std::string linear = SimulationSettings{}.linear_solver;  ///< linear solver backend (see make_linear_solver())
   double krylov_rtol_max = ForcingTermSettings{}.eta_max;  ///< η_max: largest relative residual a Krylov solve may stop at
+  double rigidity_bound = SimulationSettings{}.rigidity_bound;  ///< largest ‖AᵀA − I‖_F an affine body may reach before the run stops
 };
 
 /// `output`: what is written and how often.

@@ -325,10 +325,10 @@ bool is_soft(const SceneDescription& scene, size_t i, const SurfaceMesh& surface
 
 }  // namespace
 
-Model build_model(const SceneDescription& scene, const std::filesystem::path& file) {
+Model build_model(const SceneDescription& scene, const std::filesystem::path& file, const ElementLimits& limits) {
   std::vector<SurfaceMesh> surfaces;
   for (size_t i = 0; i < scene.bodies.size(); ++i)
-    surfaces.push_back(body_surface(scene.bodies[i], file.string(), "bodies[" + std::to_string(i) + "]"));
+    surfaces.push_back(body_surface(scene.bodies[i], limits, file.string(), "bodies[" + std::to_string(i) + "]"));
   const SceneLoads loads = scene_loads(scene, surfaces);
 
   Model model;
@@ -339,7 +339,10 @@ Model build_model(const SceneDescription& scene, const std::filesystem::path& fi
     const std::string path = "bodies[" + std::to_string(i) + "]";
     if (is_soft(scene, i, surfaces[i], loads)) {
       const double h = soft_mesh_size(desc, surfaces[i], file.string(), path);
-      world.push_back(add_soft_body(model, desc, body_tet_mesh(desc, h, file.string(), path), file.string(), path));
+      // Volume files were meshed (or read) for their surface already.
+      if (desc.mesh.primitive || !is_volume_file(desc.mesh.file))
+        check_tet_count(desc, mass_moments(surfaces[i]).volume, h, limits, file.string(), path);
+      world.push_back(add_soft_body(model, desc, body_tet_mesh(desc, h, limits, file.string(), path), file.string(), path));
     } else {
       world.push_back(add_affine_body(model, desc, surfaces[i]));
     }

@@ -77,6 +77,7 @@ void fields(const auto& v, Either<ContactDescription> auto& c) {
   v("eps_v", c.eps_v);
   v("kappa", c.kappa);
   v("damping", c.damping);
+  v("check_start_gaps", c.check_start_gaps);
   v("pairs", c.pairs);
 }
 
@@ -85,6 +86,7 @@ void fields(const auto& v, Either<SolverDescription> auto& s) {
   v("max_iterations", s.max_iterations);
   v("linear", s.linear);
   v("krylov_rtol_max", s.krylov_rtol_max);
+  v("rigidity_bound", s.rigidity_bound);
 }
 
 void fields(const auto& v, Either<OutputDescription> auto& o) { v("frame_dt", o.frame_dt); }

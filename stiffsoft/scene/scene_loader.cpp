@@ -1,15 +1,18 @@
 #include <stiffsoft/scene/scene_loader.hpp>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <unordered_map>
 
 #include <stiffsoft/coupling/linear_solver/linear_solver.hpp>
+#include <stiffsoft/libfem/format_number.hpp>
+#include <stiffsoft/scene/printable.hpp>
 #include <stiffsoft/scene/scene_fields.hpp>
+#include <stiffsoft/scene/scene_text.hpp>
 #include <stiffsoft/scene/scene_validation.hpp>
 
 namespace stiffsoft {
@@ -66,10 +69,12 @@ struct JsonReader {
   }
 };
 
-/// True for a name with no visible character: "", "   ", "\t" (ParaView blocks, errors and
-/// joints refer to bodies by name).
-bool is_blank(const std::string& name) {
-  return std::all_of(name.begin(), name.end(), [](unsigned char c) { return std::isspace(c); });
+/// A name is how errors, joints and ParaView blocks refer to a body or joint: it must show
+/// something, and nothing that garbles a terminal. Throws SceneError at `at`.
+void check_name(const std::string& name, const std::string& file, const std::string& at) {
+  if (is_blank(name)) throw SceneError(file, at, "must not be empty or only white space");
+  if (has_control_character(name))
+    throw SceneError(file, at, "must not hold control characters (got \"" + name + "\")");
 }
 
 /// contact.pairs: both bodies exist, each pair at most once (in either order).
@@ -99,7 +104,7 @@ void check_joint_relations(const Json& scene, const std::string& file,
     const std::string at = "joints[" + std::to_string(i) + "]";
     JointDescription j;
     JsonReader::read(joints[i], j);
-    if (is_blank(j.name)) throw SceneError(file, at + ".name", "must not be empty or only white space");
+    check_name(j.name, file, at + ".name");
     const auto [it, inserted] = first_use.emplace(j.name, i);
     if (!inserted)
       throw SceneError(file, at + ".name",
@@ -148,8 +153,22 @@ void check_joint_relations(const Json& scene, const std::string& file,
   }
 }
 
+/// time: one step at least, and no more steps than a run can count.
+void check_time(const Json& scene, const std::string& file) {
+  const double dt = scene.at("time").at("dt").get<double>(), duration = scene.at("time").at("duration").get<double>();
+  if (!(dt <= duration))
+    throw SceneError(file, "time.dt", "must be <= time.duration (" + fem::format_number(duration) + " s) (got " +
+                                          fem::format_number(dt) + " s)");
+  const double steps = std::ceil(duration / dt);
+  if (!(steps <= std::numeric_limits<int>::max()))
+    throw SceneError(file, "time.dt",
+                     "time.duration / time.dt = " + fem::format_number(steps) + " steps, more than a run can count (" +
+                         std::to_string(std::numeric_limits<int>::max()) + "); use a larger dt or a shorter duration");
+}
+
 // What a schema entry cannot express: relations between values.
 void check_relations(const Json& scene, const std::string& file) {
+  check_time(scene, file);
   try {
     check_linear_solver_name(scene.at("solver").at("linear").get<std::string>());
   } catch (const std::invalid_argument& e) {
@@ -160,7 +179,7 @@ void check_relations(const Json& scene, const std::string& file) {
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const std::string at = "bodies[" + std::to_string(i) + "]";
     const std::string name = bodies[i].at("name").get<std::string>();
-    if (is_blank(name)) throw SceneError(file, at + ".name", "must not be empty or only white space");
+    check_name(name, file, at + ".name");
     const auto [it, inserted] = first_use.emplace(name, i);
     if (!inserted)
       throw SceneError(file, at + ".name",
@@ -182,31 +201,6 @@ SceneDescription scene_from(const Json& scene, const std::string& name) {
   out.name = name;
   JsonReader::read(scene, out);
   return out;
-}
-
-// nlohmann reports the byte offset of a syntax error; people want line and column.
-std::string syntax_location(const std::string& text, std::size_t byte) {
-  const std::size_t end = std::min(text.size(), byte > 0 ? byte - 1 : 0);
-  std::size_t line = 1, column = 1;
-  for (std::size_t i = 0; i < end; ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      column = 1;
-    } else {
-      ++column;
-    }
-  }
-  return "line " + std::to_string(line) + ", column " + std::to_string(column);
-}
-
-// The part of nlohmann's message after its own location prefix.
-std::string syntax_reason(const std::string& what) {
-  const std::size_t column = what.find("column ");
-  if (column != std::string::npos) {
-    const std::size_t colon = what.find(": ", column);
-    if (colon != std::string::npos) return what.substr(colon + 2);
-  }
-  return what;
 }
 
 /// Writes the structs as JSON, key by key from scene_fields.hpp; a conditional key only where
@@ -252,12 +246,7 @@ struct JsonWriter {
 
 SceneDescription load_scene_from_string(const std::string& text, const std::filesystem::path& scene_folder,
                                         const std::string& file_label, const std::string& name) {
-  Json parsed;
-  try {
-    parsed = Json::parse(text);
-  } catch (const nlohmann::json::parse_error& error) {
-    throw SceneError(file_label, syntax_location(text, error.byte), "invalid JSON: " + syntax_reason(error.what()));
-  }
+  const Json parsed = parse_scene_text(text, file_label);
   const Json filled = apply_scene_schema(parsed, scene_folder, file_label);
   check_relations(filled, file_label);
   return scene_from(filled, name);

@@ -13,10 +13,13 @@
 namespace stiffsoft {
 
 /// Reads, validates and converts a scene file; every default is filled in.
-/// Checks everything scene_schema() states (types, ranges, allowed values, array
-/// lengths, required and unknown keys, mesh files existing with .obj/.stl extension,
-/// resolved against the scene file's folder) plus what a schema entry cannot: unique,
-/// non-empty body names and torus minor_radius < radius. Relative defaults (contact.dhat,
+/// Checks the text (parse_scene_text(): syntax, numbers a double cannot hold, keys given
+/// twice), everything scene_schema() states (types, ranges, allowed values, array
+/// lengths, integers that fit an int, required and unknown keys, mesh files existing with an
+/// allowed extension, resolved against the scene file's folder) plus what a schema entry
+/// cannot: unique body and joint names that show something and hold no control character,
+/// dt ≤ duration and a step count that fits an int, torus minor_radius < radius, joints and
+/// contact pairs naming existing bodies. Relative defaults (contact.dhat,
 /// contact.eps_v, contact.kappa, solver.tolerance, output.frame_dt) stay unset.
 /// SceneDescription::name is the file's stem.
 /// Throws SceneError (`<file>: <json path>: <what was expected>`; JSON syntax errors

@@ -17,7 +17,9 @@ namespace stiffsoft {
 /// Any problem with a scene file: syntax, type, range, unknown key, missing mesh, ...
 /// what() is `<file>: <json path>: <what was expected>`, for example
 /// `scenes/x.json: bodies[3].density: must be > 0 (got -2)`; a JSON syntax error has
-/// `line L, column C` in place of the JSON path.
+/// `line L, column C` in place of the JSON path. Bytes that are not printable (invalid UTF-8,
+/// control characters) are shown as `\xNN` in every part (printable(), printable.hpp), so the
+/// accessors return the escaped text too.
 class SceneError : public std::runtime_error {
  public:
   /// file: the scene file as given; json_path: `bodies[3].density` style (empty for the
@@ -39,7 +41,7 @@ class SceneError : public std::runtime_error {
 
 /// The schema as a JSON list of entries, in document order. Each entry has
 /// `pointer` (`/bodies/*/density`; `*` is any list element), `type` (object, list,
-/// number, integer, string, vector3, file), `doc`, and where they apply `required`,
+/// number, integer, string, boolean, vector3, file), `doc`, and where they apply `required`,
 /// `default` (null: computed from the scene, explained by `default_doc`), `min`,
 /// `exclusive_min`, `max`, `exclusive_max`, `options` (allowed strings), `extensions` (file),
 /// `min_length` (list), `unit`, and `when` ({sibling key: [values]}: the key is only

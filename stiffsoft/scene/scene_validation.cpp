@@ -2,8 +2,12 @@
 
 #include <algorithm>
 #include <cctype>
+#include <limits>
 #include <string>
 #include <vector>
+
+#include <stiffsoft/libfem/format_number.hpp>
+#include <stiffsoft/scene/printable.hpp>
 
 namespace stiffsoft {
 
@@ -32,6 +36,7 @@ std::string type_phrase(const Json& entry) {
   if (type == "number") return "a number";
   if (type == "integer") return "an integer";
   if (type == "string") return "a string";
+  if (type == "boolean") return "true or false";
   if (type == "vector3") return "an array of 3 numbers";
   if (type == "file") return "a mesh file path (string)";
   return type;
@@ -47,6 +52,7 @@ bool type_matches(const Json& entry, const Json& value) {
   if (type == "number") return value.is_number();
   if (type == "integer") return value.is_number_integer();
   if (type == "string" || type == "file") return value.is_string();
+  if (type == "boolean") return value.is_boolean();
   return false;
 }
 
@@ -87,9 +93,15 @@ class Validator {
     if (type == "list") return validate_list(value, entry, pointer, path);
     if (type == "vector3") return validate_vector3(value, entry, path);
     if (type == "number" || type == "integer") {
+      // Integers are read into an int: a larger one would wrap around silently.
+      if (type == "integer" && !(value.get<double>() >= std::numeric_limits<int>::min() &&
+                                 value.get<double>() <= std::numeric_limits<int>::max()))
+        fail(path, "must be an integer between " + std::to_string(std::numeric_limits<int>::min()) + " and " +
+                       std::to_string(std::numeric_limits<int>::max()) + " (got " + value.dump() + ")");
       check_range(value, entry, path);
       return value;
     }
+    if (type == "boolean") return value;
     if (type == "string") {
       if (entry.contains("options") &&
           std::find(entry["options"].begin(), entry["options"].end(), value) == entry["options"].end())
@@ -126,14 +138,16 @@ class Validator {
 
   void check_range(const Json& value, const Json& entry, const std::string& path) const {
     const double x = value.get<double>();
+    // Shortest round-trip text: 1e+06 rather than 1000000.0.
+    const auto text = [](const Json& number) { return fem::format_number(number.get<double>()); };
     if (entry.contains("exclusive_min") && !(x > entry["exclusive_min"].get<double>()))
-      fail(path, "must be > " + entry["exclusive_min"].dump() + " (got " + value.dump() + ")");
+      fail(path, "must be > " + text(entry["exclusive_min"]) + " (got " + text(value) + ")");
     if (entry.contains("min") && !(x >= entry["min"].get<double>()))
-      fail(path, "must be >= " + entry["min"].dump() + " (got " + value.dump() + ")");
+      fail(path, "must be >= " + text(entry["min"]) + " (got " + text(value) + ")");
     if (entry.contains("exclusive_max") && !(x < entry["exclusive_max"].get<double>()))
-      fail(path, "must be < " + entry["exclusive_max"].dump() + " (got " + value.dump() + ")");
+      fail(path, "must be < " + text(entry["exclusive_max"]) + " (got " + text(value) + ")");
     if (entry.contains("max") && !(x <= entry["max"].get<double>()))
-      fail(path, "must be <= " + entry["max"].dump() + " (got " + value.dump() + ")");
+      fail(path, "must be <= " + text(entry["max"]) + " (got " + text(value) + ")");
   }
 
   Json validate_vector3(const Json& value, const Json& entry, const std::string& path) const {
@@ -257,11 +271,13 @@ class Validator {
 
 }  // namespace
 
+// Every part is made printable here, once, so no message can carry a raw byte from a file.
 SceneError::SceneError(std::string file, std::string json_path, std::string expected)
-    : std::runtime_error(file + ": " + (json_path.empty() ? std::string("(root)") : json_path) + ": " + expected),
-      file_(std::move(file)),
-      json_path_(json_path.empty() ? "(root)" : std::move(json_path)),
-      expected_(std::move(expected)) {}
+    : std::runtime_error(printable(file) + ": " + (json_path.empty() ? std::string("(root)") : printable(json_path)) +
+                         ": " + printable(expected)),
+      file_(printable(file)),
+      json_path_(json_path.empty() ? "(root)" : printable(json_path)),
+      expected_(printable(expected)) {}
 
 nlohmann::ordered_json apply_scene_schema(const nlohmann::ordered_json& scene,
                                           const std::filesystem::path& scene_folder,

@@ -4,6 +4,7 @@
 #include <sstream>
 #include <vector>
 
+#include <stiffsoft/scene/element_limits.hpp>
 #include <stiffsoft/scene/scene_schema.hpp>
 
 namespace stiffsoft {
@@ -101,7 +102,13 @@ std::string schema_markdown() {
   md += "- A pose is applied as x = R·(scale ∘ x̄) + position with R = Rz·Ry·Rx from `rotation_deg`.\n";
   md += "- Every error names the file and the JSON path, e.g. "
         "`scenes/x.json: bodies[3].density: must be > 0 (got -2)`.\n";
-  md += "- Bodies must start separated by more than d̂ (no overlaps).\n\n";
+  md += "- Bodies must start more than d̂ apart (closest surface points; no overlaps), and d̂ must be at most 1 % "
+        "of the smallest body's bounding-box diagonal. Both are checked, and the error suggests a d̂ that fits, unless "
+        "`contact.check_start_gaps` is false (docs/robustness.md).\n";
+  md += "- Every number must be finite; velocities, positions and sizes have bounds (the allowed column). A body may "
+        "ask for at most " + std::to_string(ElementLimits{}.max_tets) + " tetrahedra and " +
+        std::to_string(ElementLimits{}.max_triangles) + " primitive triangles, estimated before meshing "
+        "(`stiffsoft run --max-tets N --max-triangles N` raise them).\n\n";
   md += "| key | type | default | allowed | unit | description |\n";
   md += "|---|---|---|---|---|---|\n";
   for (const auto& entry : scene_schema()) {

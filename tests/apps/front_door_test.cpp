@@ -42,7 +42,7 @@ TEST(FrontDoor, ASceneFileBecomesTheSimulationStiffsoftRunSteps) {
   SceneSimulation run = make_simulation(file);
   const SceneDescription loaded = load_scene(file);
   EXPECT_EQ(run.scene.name, "box_stack");
-  // Relative defaults are resolved: d̂ = 1e-3 L, ε_d = 1e-2 L/s, frame_dt = max(dt, 1/60).
+  // Relative defaults are resolved: d̂ = 1e-3 L (below 1 % of the smallest body here), ε_d = 1e-2 L/s, frame_dt = max(dt, 1/60).
   const double L = run.simulation.model().bounding_box_diagonal();
   EXPECT_DOUBLE_EQ(*run.scene.contact.dhat, 1e-3 * L);
   EXPECT_DOUBLE_EQ(run.simulation.settings().dhat, 1e-3 * L);

@@ -120,5 +120,21 @@ TEST(Primitive, BadParametersThrowWithAClearMessage) {
   EXPECT_NE(message(torus).find("minor_radius"), std::string::npos) << message(torus);
 }
 
+TEST(Primitive, TriangleCountIsCountedWithoutMakingTheMesh) {
+  using Type = PrimitiveShape::Type;
+  for (Type type : {Type::Box, Type::Plane, Type::Sphere, Type::Cylinder, Type::Torus})
+    for (int resolution : {3, 4, 5, 16, 33}) {
+      PrimitiveShape shape;
+      shape.type = type;
+      shape.resolution = resolution;
+      EXPECT_EQ(primitive_triangle_count(shape), double(make_primitive(shape).F.rows()))
+          << int(type) << " at resolution " << resolution;
+    }
+  PrimitiveShape huge;
+  huge.type = Type::Sphere;
+  huge.resolution = 2'000'000'000;
+  EXPECT_DOUBLE_EQ(primitive_triangle_count(huge), 4e18 - 4e9);
+}
+
 }  // namespace
 }  // namespace stiffsoft

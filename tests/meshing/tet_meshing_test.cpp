@@ -287,6 +287,30 @@ TEST(TetMeshing, StepInMillimetresBecomesMetres) {
   EXPECT_NEAR(m.X.col(2).maxCoeff(), 0.3, 1e-15);
 }
 
+TEST(TetMeshing, CadAndGeoFilesAboveMaxTetsAreRefusedBeforeMeshing) {
+  // h = 10 µm would mean about 5e13 tetrahedra: refused once the geometry is loaded.
+  TetMeshOptions options = with_h(1e-5);
+  options.max_tets = 1e6;
+  try {
+    make_tet_mesh(data / "tet_box_100x200x300mm.step", options);
+    FAIL() << "meshed";
+  } catch (const TetCountLimitError& e) {
+    EXPECT_NEAR(e.volume(), 0.1 * 0.2 * 0.3, 1e-12);  // OpenCASCADE's volume
+    EXPECT_DOUBLE_EQ(e.expected(), expected_tet_count(0.006, 1e-5));
+  }
+  try {
+    make_tet_mesh(data / "tet_box_with_groups.geo", options);
+    FAIL() << "meshed";
+  } catch (const TetCountLimitError& e) {
+    EXPECT_NEAR(e.volume(), 0.2 * 0.1 * 0.1, 1e-7);  // the bounding box's volume (gmsh pads boxes by 1e-7 m)
+  }
+}
+
+TEST(TetMeshing, ExpectedTetCountIsTheVolumeOverARegularTetrahedron) {
+  EXPECT_DOUBLE_EQ(expected_tet_count(1.0, 1.0), 6.0 * std::sqrt(2.0));
+  EXPECT_DOUBLE_EQ(expected_tet_count(0.008, 0.1), 0.008 * 6.0 * std::sqrt(2.0) / 1e-3);
+}
+
 TEST(TetMeshing, GeoPhysicalGroupsBecomeNodeSets) {
   const TetMesh m = make_tet_mesh(data / "tet_box_with_groups.geo", with_h(0.05));
   expect_good_mesh(m);

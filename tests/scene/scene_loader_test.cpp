@@ -124,6 +124,7 @@ TEST(SceneLoader, AGoodSceneKeepsEveryValueItGives) {
   EXPECT_EQ(s.contact.eps_v, 0.0005);
   EXPECT_EQ(s.contact.kappa, 1000.0);
   EXPECT_EQ(s.contact.damping, 0.001);
+  EXPECT_FALSE(s.contact.check_start_gaps);
   ASSERT_EQ(s.contact.pairs.size(), 1u);
   EXPECT_EQ(s.contact.pairs[0].body_a, "ball");
   EXPECT_EQ(s.contact.pairs[0].body_b, "floor");

@@ -33,7 +33,7 @@ TEST(SceneSchema, DocsScenesMdIsTheRenderedSchema) {
 }
 
 TEST(SceneSchema, EveryEntryHasAKnownTypeAndADoc) {
-  const std::set<std::string> types = {"object", "list", "number", "integer", "string", "vector3", "file"};
+  const std::set<std::string> types = {"object", "list", "number", "integer", "string", "boolean", "vector3", "file"};
   for (const auto& entry : scene_schema()) {
     SCOPED_TRACE(entry.dump());
     ASSERT_TRUE(entry.contains("pointer"));
@@ -54,11 +54,15 @@ TEST(SceneSchema, EveryDefaultPassesItsOwnEntry) {
     SCOPED_TRACE(entry.dump());
     const double lo_exclusive = entry.value("exclusive_min", -1e300);
     const double lo = entry.value("min", -1e300);
+    const double hi_exclusive = entry.value("exclusive_max", 1e300);
+    const double hi = entry.value("max", 1e300);
     const auto values = entry["default"].is_array() ? entry["default"] : nlohmann::ordered_json::array({entry["default"]});
     for (const auto& v : values) {
       if (!v.is_number()) continue;
       EXPECT_GT(v.get<double>(), lo_exclusive);
       EXPECT_GE(v.get<double>(), lo);
+      EXPECT_LT(v.get<double>(), hi_exclusive);
+      EXPECT_LE(v.get<double>(), hi);
     }
     if (entry.contains("options")) {
       const auto& options = entry["options"];
@@ -119,6 +123,7 @@ void expect_default_contact(const ContactDescription& contact) {
   EXPECT_EQ(contact.eps_v, d.eps_v);
   EXPECT_EQ(contact.kappa, d.kappa);
   EXPECT_EQ(contact.damping, d.damping);
+  EXPECT_EQ(contact.check_start_gaps, d.check_start_gaps);
 }
 
 void expect_default_solver(const SolverDescription& solver) {

@@ -50,7 +50,11 @@ struct CholmodSolver::Impl {
   bool factorized = false;
 };
 
-CholmodSolver::CholmodSolver() : m_impl(std::make_unique<Impl>()) {}
+CholmodSolver::CholmodSolver() : m_impl(std::make_unique<Impl>()) {
+  // CHOLMOD prints its warnings ("not positive definite") to stdout itself; here they are
+  // statuses in the LinearSolveReport, which the caller logs.
+  m_impl->llt.cholmod().print = 0;
+}
 CholmodSolver::~CholmodSolver() = default;
 
 void CholmodSolver::analyze_pattern(const Eigen::SparseMatrix<double>& upper) {

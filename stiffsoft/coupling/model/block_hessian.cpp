@@ -32,6 +32,14 @@ void BlockHessian::add(int i, int j, const Eigen::Ref<const Eigen::MatrixXd>& H)
     block_at(it->second, r, c) += H.transpose();
 }
 
+void BlockHessian::decouple(const std::vector<char>& held) {
+  const std::int64_t n = num_blocks();
+  for (const auto& [key, at] : m_off_diagonal) {
+    const int i = int(key / n), j = int(key % n);
+    if (held[i] || held[j]) block_at(at, i, j).setZero();
+  }
+}
+
 std::vector<std::int64_t> BlockHessian::pattern() const {
   std::vector<std::int64_t> keys;
   keys.reserve(m_off_diagonal.size());

@@ -21,6 +21,10 @@ class BlockHessian {
   explicit BlockHessian(const std::vector<DofBlock>& blocks);
   /// Adds H (size_i × size_j) to block (i, j); for i > j the transpose is added to (j, i).
   void add(int i, int j, const Eigen::Ref<const Eigen::MatrixXd>& H);
+  /// Zeroes every off-diagonal block in the row or column of a block with held[b] ≠ 0 (DOFs
+  /// held on a prescribed motion): those blocks then decouple from the rest. The sparsity
+  /// pattern stays as it was.
+  void decouple(const std::vector<char>& held);
   /// The upper triangle as a compressed sparse column matrix (n × n, n = number of DOFs).
   Eigen::SparseMatrix<double> upper() const;
   /// The off-diagonal block pairs, sorted: equal lists mean equal sparsity patterns.

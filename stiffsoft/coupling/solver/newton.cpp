@@ -1,5 +1,6 @@
 #include <stiffsoft/coupling/solver/newton.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -50,6 +51,21 @@ bool newton_direction(const BlockHessian& H, const Eigen::VectorXd& g, LinearSol
 
 }  // namespace
 
+void accumulate(NewtonReport& total, const NewtonReport& next) {
+  total.converged = next.converged;
+  total.iterations += next.iterations;
+  total.line_search_steps += next.line_search_steps;
+  total.smallest_ccd_step = std::min(total.smallest_ccd_step, next.smallest_ccd_step);
+  total.ccd_limited_iterations += next.ccd_limited_iterations;
+  total.revised_directions += next.revised_directions;
+  total.energy = next.energy;
+  total.last_step_speed = next.last_step_speed;
+  total.linear_iterations += next.linear_iterations;
+  total.linear_fallbacks += next.linear_fallbacks;
+  if (total.linear_failure.empty()) total.linear_failure = next.linear_failure;
+  total.failure = next.failure;
+}
+
 NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>& terms,
                              Eigen::VectorXd& q, LinearSolver& solver, const NewtonSettings& settings,
                              PhaseTimes& times, const ReducedBasis* basis) {
@@ -60,6 +76,15 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
   std::vector<std::int64_t> pattern;
   Eigen::VectorXd g(q.size()), p(q.size()), q_trial(q.size());
   double eta = 0, g_norm_previous = 0;  // Eisenstat–Walker state
+  std::vector<char> held(model.blocks.size(), 0);
+  for (int b : settings.held_blocks) held[b] = 1;
+  const bool holds = !settings.held_blocks.empty();
+  // Zeroes v on the held blocks.
+  const auto hold = [&](Eigen::VectorXd& v) {
+    for (int b : settings.held_blocks) v.segment(model.blocks[b].offset, model.blocks[b].size).setZero();
+  };
+  if (basis && holds)
+    throw std::invalid_argument("newton_minimize: held DOF blocks cannot be combined with joints' eliminated equalities");
   if (basis && solver.is_iterative())
     throw std::invalid_argument("newton_minimize: the " + solver.name() +
                                 " linear solver is iterative, which joints' eliminated equalities do not support; "
@@ -78,6 +103,7 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
       ScopedTimer timer(times.assembly);
       for (const EnergyTerm* t : terms) t->add_gradient(c, g);
     }
+    if (holds) hold(g);
     const double g_norm = g.norm();
     eta = forcing_term(g_norm, g_norm_previous, eta, settings.forcing);
     g_norm_previous = g_norm;
@@ -86,8 +112,10 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
     {
       ScopedTimer timer(times.assembly);
       for (const EnergyTerm* t : terms) t->add_hessian(c, H);
+      if (holds) H.decouple(held);
     }
     const bool solved = newton_direction(H, g, solver, pattern, times, basis, p);
+    if (holds) hold(p);  // exact zeros, whatever the solver (a multigrid cycle may mix blocks)
     const LinearSolveReport& linear = solver.last_report();
     report.linear_iterations += linear.iterations;
     report.linear_fallbacks += linear.fallback_used;
@@ -104,6 +132,7 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
     {
       ScopedTimer timer(times.assembly);
       for (const EnergyTerm* t : terms) revised = t->revise_hessian(c, p, dx, H) || revised;
+      if (revised && holds) H.decouple(held);
     }
     if (revised) {
       // Same sparsity (the revision only changes existing stencils' blocks): no new analysis.
@@ -112,6 +141,7 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
       const bool resolved = newton_direction(H, g, solver, pattern, times, basis, p_revised);
       report.linear_iterations += solver.last_report().iterations;
       if (resolved) {
+        if (holds) hold(p_revised);
         p.swap(p_revised);
         dx = model.surface_step(p);
         ++report.revised_directions;

@@ -21,6 +21,9 @@ struct NewtonSettings {
   int max_iterations = 200;  ///< cap on iterations
   int max_line_search = 60;  ///< cap on halvings of α
   ForcingTermSettings forcing;  ///< relative tolerances of Krylov solves (inexact Newton)
+  /// DOF blocks held where they are (prescribed motion already in place): their gradient rows
+  /// and off-diagonal Hessian blocks are dropped and every direction is zero on them.
+  std::vector<int> held_blocks;
 };
 
 /// What one minimisation did.
@@ -39,6 +42,10 @@ struct NewtonReport {
   std::string failure;           ///< why it stopped without converging
 };
 
+/// Adds a later minimisation of the same step to `total`: counts add up, the smallest CCD step
+/// is the smaller one, and the outcome (converged, energy, last step speed, failure) is `next`'s.
+void accumulate(NewtonReport& total, const NewtonReport& next);
+
 /// Minimises Σ terms over q, starting from (and overwriting) q. Terms get update() at every
 /// configuration they are evaluated at. With an iterative linear solver the Krylov tolerance
 /// of each solve follows Eisenstat–Walker's forcing terms (linear_solver/forcing_term.hpp);
@@ -48,7 +55,7 @@ struct NewtonReport {
 /// q must satisfy the equalities on entry; each direction solves (Nᵀ H N) dz = −Nᵀ g and steps
 /// along p = N dz, so every iterate keeps them (to round-off). The line search, CCD and the
 /// stopping rule are unchanged. Krylov backends are not supported with a basis (their DOF
-/// blocks do not survive the elimination): std::invalid_argument.
+/// blocks do not survive the elimination): std::invalid_argument; nor are held blocks.
 NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>& terms,
                              Eigen::VectorXd& q, LinearSolver& solver, const NewtonSettings& settings,
                              PhaseTimes& times, const ReducedBasis* basis = nullptr);

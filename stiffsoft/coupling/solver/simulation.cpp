@@ -1,12 +1,14 @@
 #include <stiffsoft/coupling/solver/simulation.hpp>
 
 #include <Eigen/QR>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
 #include <stiffsoft/libabd/orthogonality_potential.hpp>
+#include <stiffsoft/libfem/format_number.hpp>
 
 namespace stiffsoft {
 
@@ -22,6 +24,9 @@ std::string linear_solver_name(const Model& model, const SimulationSettings& s) 
                                 "(cholmod or auto); their eliminated equalities leave no DOF blocks for PETSc");
   return s.linear_solver;
 }
+
+/// A measured number in an error message, to 4 significant digits.
+std::string brief(double value) { return fem::format_significant(value, 4); }
 
 /// The settings, once validate() has accepted them.
 const SimulationSettings& validated(const SimulationSettings& settings) {
@@ -62,6 +67,10 @@ Simulation::Simulation(Model model, const SimulationSettings& settings)
   const SoftNodes& nodes = m_model.nodes;
   for (int i = 0; i < nodes.size(); ++i)
     if (nodes.motion[i] == Motion::Dynamic) m_gravity_q.segment<3>(nodes.dof[i]) = settings.gravity;
+  for (const BodyModel& body : m_model.bodies)
+    if (body.block >= 0 && body.motion == Motion::Kinematic) m_prescribed_blocks.push_back(body.block);
+  for (int i = 0; i < nodes.size(); ++i)
+    if (nodes.motion[i] == Motion::Kinematic) m_prescribed_blocks.push_back(nodes.block[i]);
 }
 
 StepStats Simulation::step() {
@@ -110,8 +119,11 @@ StepStats Simulation::step() {
   ns.forcing.eta_max = m_settings.krylov_rtol_max;
   Eigen::VectorXd q_new = initial_guess(q_tilde, c_n);
   StepStats stats;
-  stats.newton = newton_minimize(m_model, terms, q_new, *m_solver, ns, m_times, reduced_basis());
+  stats.newton = m_prescribed_blocks.empty()
+                     ? newton_minimize(m_model, terms, q_new, *m_solver, ns, m_times, reduced_basis())
+                     : follow_paths(terms, q_tilde, ns, q_new);
   if (m_basis) q_new = m_basis->project(q_new);  // removes round-off drift along the equalities
+  check_rigidity(q_new);
 
   const Eigen::VectorXd qdot_new = updated_qdot(m_settings.integrator, h, q_new, m_q, m_q_prev);
   m_q_prev = m_q;
@@ -194,6 +206,117 @@ Eigen::VectorXd Simulation::initial_guess(const Eigen::VectorXd& q_tilde, const 
   double alpha = m_barrier.max_step(c_n, dq, dx);
   if (!m_joints.empty()) alpha = std::min(alpha, m_joints.max_step(c_n, alpha * dq, alpha * dx) * alpha);
   return m_q + alpha * dq;
+}
+
+NewtonReport Simulation::follow_paths(const std::vector<EnergyTerm*>& terms, const Eigen::VectorXd& q_tilde,
+                                      const NewtonSettings& ns, Eigen::VectorXd& q) {
+  NewtonSettings held = ns;
+  held.held_blocks = m_prescribed_blocks;
+  if (!m_basis) {
+    // The initial guess reached the path (to the round-off of qⁿ + 1·(q̃ − qⁿ)), or the
+    // prescribed blocks alone can move there from qⁿ.
+    if (path_lag(q, q_tilde).first <= 1e-12 * std::max(1.0, m_model.bounding_box_diagonal())) {
+      q = on_path(q, q_tilde);
+      return newton_minimize(m_model, terms, q, *m_solver, held, m_times);
+    }
+    const Eigen::VectorXd q_on = on_path(m_q, q_tilde);
+    if (moves_freely(m_q, q_on)) {
+      q = q_on;
+      return newton_minimize(m_model, terms, q, *m_solver, held, m_times);
+    }
+  }
+  // Something sits on the path: push it out of the way with a stiff pull, then hold.
+  constexpr int kPullRounds = 5;  // weights w, 10 w, …, 10⁴ w
+  NewtonReport report;
+  double weight = m_settings.kinematic_weight;
+  for (int round = 0;; ++round, weight *= 10) {
+    m_inertia.set_kinematic_weight(weight);
+    accumulate(report, newton_minimize(m_model, terms, q, *m_solver, ns, m_times, reduced_basis()));
+    const bool there = m_basis ? path_lag(q, q_tilde).first <= ns.tolerance * ns.h
+                               : moves_freely(q, on_path(q, q_tilde));
+    if (there) break;
+    if (round + 1 == kPullRounds) {
+      m_inertia.set_kinematic_weight(m_settings.kinematic_weight);
+      throw path_blocked(q, q_tilde);
+    }
+  }
+  m_inertia.set_kinematic_weight(m_settings.kinematic_weight);
+  if (m_basis) return report;
+  q = on_path(q, q_tilde);
+  accumulate(report, newton_minimize(m_model, terms, q, *m_solver, held, m_times));
+  return report;
+}
+
+Eigen::VectorXd Simulation::on_path(const Eigen::VectorXd& q, const Eigen::VectorXd& q_tilde) const {
+  Eigen::VectorXd q_on = q;
+  for (int b : m_prescribed_blocks) {
+    const DofBlock& block = m_model.blocks[b];
+    q_on.segment(block.offset, block.size) = q_tilde.segment(block.offset, block.size);
+  }
+  return q_on;
+}
+
+bool Simulation::moves_freely(const Eigen::VectorXd& from, const Eigen::VectorXd& to) const {
+  const Eigen::VectorXd dq = to - from;
+  const Eigen::MatrixX3d dx = m_model.surface_step(dq);
+  const Configuration c{from, m_model.surface(from)};
+  if (m_barrier.max_step(c, dq, dx) < 1) return false;
+  return m_joints.empty() || m_joints.max_step(c, dq, dx) >= 1;
+}
+
+std::pair<double, int> Simulation::path_lag(const Eigen::VectorXd& q, const Eigen::VectorXd& q_tilde) const {
+  const Eigen::VectorXd dq = on_path(q, q_tilde) - q;
+  const Eigen::MatrixX3d dx = m_model.surface_step(dq);
+  std::pair<double, int> lag{0.0, -1};
+  const auto farther = [&](double d, int body) {
+    if (d > lag.first) lag = {d, body};
+  };
+  for (int v = 0; v < dx.rows(); ++v) farther(dx.row(v).norm(), m_model.mesh.vertex_body[v]);
+  const SoftNodes& nodes = m_model.nodes;
+  for (int i = 0; i < nodes.size(); ++i)
+    if (nodes.motion[i] == Motion::Kinematic) farther(dq.segment<3>(nodes.dof[i]).norm(), nodes.body[i]);
+  return lag;
+}
+
+PhysicsError Simulation::path_blocked(const Eigen::VectorXd& q, const Eigen::VectorXd& q_tilde) const {
+  const auto [lag, body] = path_lag(q, q_tilde);
+  const BodyModel& b = m_model.bodies[std::max(body, 0)];
+  // The bodies in contact with it, from the barrier's active set at q.
+  std::vector<std::string> touching;
+  for (const ContactConstraint& contact : m_barrier.constraints()) {
+    bool involved = false;
+    for (int v : contact.vertices) involved = involved || (v >= 0 && m_model.mesh.vertex_body[v] == body);
+    if (!involved) continue;
+    for (int v : contact.vertices) {
+      if (v < 0 || m_model.mesh.vertex_body[v] == body) continue;
+      const std::string& name = m_model.bodies[m_model.mesh.vertex_body[v]].name;
+      if (std::find(touching.begin(), touching.end(), name) == touching.end()) touching.push_back(name);
+    }
+  }
+  std::string against;
+  for (const std::string& name : touching) against += (against.empty() ? "'" : ", '") + name + "'";
+  const std::string what = b.motion == Motion::Kinematic ? "kinematic body '" + b.name + "'"
+                                                         : "the prescribed nodes of soft body '" + b.name + "'";
+  return PhysicsError(what + " cannot follow its path at step " + std::to_string(m_step + 1) + " (t = " +
+                      brief(m_time + m_settings.h) + " s): contact" +
+                      (against.empty() ? "" : " with " + against) + " holds it " + brief(lag) +
+                      " m short, even under a pull " + brief(m_settings.kinematic_weight * 1e4) +
+                      " times its own inertia. Something is caught between it and a fixed or kinematic body and would "
+                      "have to intersect; change the path, or make room");
+}
+
+void Simulation::check_rigidity(const Eigen::VectorXd& q) const {
+  for (const BodyModel& body : m_model.bodies) {
+    if (body.dof < 0 || body.motion != Motion::Dynamic) continue;
+    const double error = abd::orthogonality_error(q.segment<12>(body.dof));
+    if (error <= m_settings.rigidity_bound) continue;
+    throw PhysicsError("affine body '" + body.name + "': rigidity error ‖AᵀA − I‖ = " + brief(error) +
+                       " at step " + std::to_string(m_step + 1) + " (t = " + brief(m_time + m_settings.h) +
+                       " s) exceeds the bound " + brief(m_settings.rigidity_bound) +
+                       ": contact or joint forces beyond what its orthogonality stiffness κ can hold. Raise the "
+                       "body's `kappa`, lower `dt`, or fix an impossible setup (a body crushed between others); "
+                       "the bound is `solver/rigidity_bound`");
+  }
 }
 
 void Simulation::compute_joint_forces(const std::vector<EnergyTerm*>& terms, const Configuration& c) {

@@ -4,6 +4,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <stiffsoft/coupling/solver/integrator.hpp>
 #include <stiffsoft/coupling/joints/linear_constraints.hpp>
@@ -11,6 +13,7 @@
 #include <stiffsoft/coupling/linear_solver/linear_solver.hpp>
 #include <stiffsoft/coupling/model/model.hpp>
 #include <stiffsoft/coupling/solver/newton.hpp>
+#include <stiffsoft/coupling/solver/physics_error.hpp>
 #include <stiffsoft/coupling/solver/simulation_settings.hpp>
 #include <stiffsoft/coupling/solver/step_stats.hpp>
 #include <stiffsoft/coupling/terms/barrier_term.hpp>
@@ -42,7 +45,10 @@ class Simulation {
   /// Not copyable or movable: the energy terms hold references into the Simulation.
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
-  /// Advances by one step h.
+  /// Advances by one step h. Kinematic bodies and prescribed soft nodes end the step exactly on
+  /// their path. Throws PhysicsError (physics_error.hpp), leaving the state at the last step,
+  /// when a prescribed motion cannot be followed without intersection or an affine body's
+  /// rigidity error ‖AᵀA − I‖_F would exceed SimulationSettings::rigidity_bound.
   StepStats step();
   /// The state now (a copy).
   SimulationState state() const;
@@ -71,6 +77,8 @@ class Simulation {
   Eigen::MatrixX3d node_positions() const { return m_model.node_positions(m_q); }
   /// Velocities of the soft bodies' nodes, |N|×3 (m/s): zero for fixed nodes.
   Eigen::MatrixX3d node_velocities() const;
+  /// Number of inverted tetrahedra (det F ≤ 0) of each body now, indexed like Model::bodies.
+  std::vector<int> inverted_tets() const { return m_elasticity.inverted_per_body(m_q); }
   /// Von Mises stress of every soft tetrahedron (Model::nodes.T order), Pa; empty without soft bodies.
   Eigen::VectorXd von_mises() const;
   /// The joints' linear equalities C q = d (no rows without linear joints).
@@ -100,6 +108,25 @@ class Simulation {
   /// qⁿ as CCD allows. Starting at qⁿ would make Newton turn a spinning body through linearised
   /// rotations, each of which stretches it against the stiff orthogonality potential.
   Eigen::VectorXd initial_guess(const Eigen::VectorXd& q_tilde, const Configuration& c_n) const;
+  /// Minimises the step's energy from q with the prescribed DOF blocks held on their path q̃:
+  /// directly when they can be put there without intersection (from the initial guess, or
+  /// from qⁿ moving them alone); otherwise pulled toward it by the inertia weight, raised
+  /// tenfold per round, until the rest of the path is free, then held. With joints' eliminated
+  /// equalities they are only pulled, to within the step-size tolerance. PhysicsError when
+  /// no round gets there.
+  NewtonReport follow_paths(const std::vector<EnergyTerm*>& terms, const Eigen::VectorXd& q_tilde,
+                            const NewtonSettings& ns, Eigen::VectorXd& q);
+  /// q with the prescribed DOF blocks taken from q̃.
+  Eigen::VectorXd on_path(const Eigen::VectorXd& q, const Eigen::VectorXd& q_tilde) const;
+  /// Whether the straight move from `from` to `to` is free of intersection (CCD, joint limits).
+  bool moves_freely(const Eigen::VectorXd& from, const Eigen::VectorXd& to) const;
+  /// How far the prescribed DOFs of q are from their path (largest surface-point or node
+  /// distance, m), and the body of the farthest.
+  std::pair<double, int> path_lag(const Eigen::VectorXd& q, const Eigen::VectorXd& q_tilde) const;
+  /// The PhysicsError of a prescribed motion that cannot be followed.
+  PhysicsError path_blocked(const Eigen::VectorXd& q, const Eigen::VectorXd& q_tilde) const;
+  /// Throws PhysicsError when an affine body of q exceeds the rigidity bound.
+  void check_rigidity(const Eigen::VectorXd& q) const;
   /// Fills m_joint_forces at the end of a step: `terms` are the step's energy terms, already
   /// updated at q.
   void compute_joint_forces(const std::vector<EnergyTerm*>& terms, const Configuration& c);
@@ -118,6 +145,7 @@ class Simulation {
   JointTerm m_joints;
   DampingTerm m_damping;
   std::vector<Eigen::Vector3d> m_joint_forces;
+  std::vector<int> m_prescribed_blocks;  // DOF blocks of kinematic bodies and prescribed soft nodes
   Eigen::VectorXd m_q, m_qdot, m_q_prev, m_qdot_prev, m_gravity_q;
   double m_time = 0;
   int m_step = 0;

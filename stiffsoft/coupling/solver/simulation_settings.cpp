@@ -44,6 +44,7 @@ void validate(const SimulationSettings& s) {
   if (!(s.krylov_rtol_max > 0 && s.krylov_rtol_max < 1))
     fail("krylov_rtol_max", "must be in (0, 1)", s.krylov_rtol_max);
   positive("kinematic_weight", s.kinematic_weight);
+  positive("rigidity_bound", s.rigidity_bound);
   non_negative("contact_damping", s.contact_damping);
   for (std::size_t k = 0; k < s.contact_pair_damping.size(); ++k) {
     const ContactPairDamping& p = s.contact_pair_damping[k];

@@ -27,13 +27,14 @@ struct SimulationSettings {
   int max_iterations = NewtonSettings{}.max_iterations;  ///< Newton iteration cap per step
   std::string linear_solver = "auto";             ///< linear solver backend (see make_linear_solver())
   double krylov_rtol_max = ForcingTermSettings{}.eta_max;  ///< largest relative residual a Krylov solve may stop at (η_max)
-  double kinematic_weight = 1e4;                  ///< inertia weight pulling kinematic bodies onto their path
+  double kinematic_weight = 1e4;                  ///< inertia weight pulling kinematic bodies onto their path where they cannot be held on it (see Simulation)
+  double rigidity_bound = 1e-2;                   ///< largest rigidity error ‖AᵀA − I‖_F an affine body may reach (PhysicsError past it)
   double contact_damping = 0;                     ///< lagged Rayleigh damping k_d of contacts (s); 0: none
   std::vector<ContactPairDamping> contact_pair_damping;  ///< k_d per body pair, replacing contact_damping there
 };
 
 /// Checks code-built settings as the scene loader checks a scene file: h, d̂, ε_v, ε_d,
-/// kinematic_weight > 0 and finite, μ and contact damping ≥ 0, κ > 0 when set,
+/// kinematic_weight and rigidity_bound > 0 and finite, μ and contact damping ≥ 0, κ > 0 when set,
 /// max_iterations ≥ 1, krylov_rtol_max in (0, 1), gravity finite, a known linear solver, pair
 /// damping on bodies ≥ 0 with k_d ≥ 0. Throws std::invalid_argument naming the first bad
 /// setting and what was expected (`SimulationSettings.dhat: must be > 0 (got -1)`).

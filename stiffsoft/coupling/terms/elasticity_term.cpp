@@ -1,16 +1,19 @@
 #include <stiffsoft/coupling/terms/elasticity_term.hpp>
 
+#include <numeric>
+
 #include <stiffsoft/libfem/make_material.hpp>
 
 namespace stiffsoft {
 
 ElasticityTerm::ElasticityTerm(const Model& model, double scale) : m_model(model), m_scale(scale) {
-  for (const BodyModel& body : model.bodies) {
+  for (int b = 0; b < int(model.bodies.size()); ++b) {
+    const BodyModel& body = model.bodies[b];
     if (body.representation != Representation::Soft) continue;
     const int n = body.node_end - body.node_begin;
     const Eigen::MatrixX4i T =
         model.nodes.T.middleRows(body.tet_begin, body.tet_end - body.tet_begin).array() - body.node_begin;
-    m_bodies.push_back({body.node_begin, std::make_unique<fem::ElasticEnergy>(
+    m_bodies.push_back({b, body.node_begin, std::make_unique<fem::ElasticEnergy>(
                                              model.nodes.X.middleRows(body.node_begin, n), T,
                                              fem::make_material(body.material.model, body.material.young,
                                                                 body.material.poisson))});
@@ -78,10 +81,15 @@ Eigen::VectorXd ElasticityTerm::von_mises(const Eigen::VectorXd& q) const {
 }
 
 int ElasticityTerm::inverted_count(const Eigen::VectorXd& q) const {
-  int count = 0;
+  const std::vector<int> counts = inverted_per_body(q);
+  return std::accumulate(counts.begin(), counts.end(), 0);
+}
+
+std::vector<int> ElasticityTerm::inverted_per_body(const Eigen::VectorXd& q) const {
+  std::vector<int> counts(m_model.bodies.size(), 0);
   for (const SoftBody& body : m_bodies)
-    for (const bool inverted : body.energy->inverted(body_positions(body, q))) count += inverted;
-  return count;
+    for (const bool inverted : body.energy->inverted(body_positions(body, q))) counts[body.index] += inverted;
+  return counts;
 }
 
 }  // namespace stiffsoft

@@ -30,9 +30,12 @@ class ElasticityTerm final : public EnergyTerm {
   Eigen::VectorXd von_mises(const Eigen::VectorXd& q) const;
   /// Number of inverted tetrahedra (det F ≤ 0) at q.
   int inverted_count(const Eigen::VectorXd& q) const;
+  /// Number of inverted tetrahedra of each body at q, indexed like Model::bodies (0 for affine ones).
+  std::vector<int> inverted_per_body(const Eigen::VectorXd& q) const;
 
  private:
   struct SoftBody {
+    int index;  // in Model::bodies
     int node_begin;
     std::unique_ptr<fem::ElasticEnergy> energy;
   };

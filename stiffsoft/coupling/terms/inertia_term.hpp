@@ -19,6 +19,8 @@ class InertiaTerm final : public EnergyTerm {
   const char* name() const override { return "inertia"; }
   /// Sets q̃ for the coming step.
   void set_target(const Eigen::VectorXd& q_tilde) { m_q_tilde = q_tilde; }
+  /// Sets w_b of kinematic bodies and nodes (their pull onto the prescribed configuration).
+  void set_kinematic_weight(double w) { m_kinematic_weight = w; }
   /// The current q̃.
   const Eigen::VectorXd& target() const { return m_q_tilde; }
   /// See EnergyTerm::value.
@@ -31,15 +33,20 @@ class InertiaTerm final : public EnergyTerm {
  private:
   struct AffineBlock {
     int block, dof;
-    abd::Matrix12d M;  // w_b M_b
+    abd::Matrix12d M;  // M_b
+    bool kinematic;
   };
   struct NodeBlock {
     int block, dof;
-    double m;  // w_i m_i
+    double m;  // m_i
+    bool kinematic;
   };
+  /// w_b of a block.
+  double weight(bool kinematic) const { return kinematic ? m_kinematic_weight : 1.0; }
   std::vector<AffineBlock> m_affine;
   std::vector<NodeBlock> m_nodes;
   Eigen::VectorXd m_q_tilde;
+  double m_kinematic_weight;
 };
 
 }  // namespace stiffsoft
