@@ -43,6 +43,8 @@ int main(int argc, char** argv) {
   run_cmd->add_option("-o,--out", run.out, "output folder")->required();
   run_cmd->add_option("--steps", run.steps, "number of steps (default: the scene's duration)")->check(CLI::PositiveNumber);
   run_cmd->add_option("--threads", run.threads, "worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  run_cmd->add_option("--load-timeout", run.load_timeout, "seconds loading and meshing may take before the run is refused (0: no bound)")
+      ->capture_default_str();
   run_cmd->add_option("--max-tets", run.limits.max_tets, "largest expected tetrahedron count of one soft body, estimated before meshing")
       ->check(CLI::PositiveNumber)->capture_default_str();
   run_cmd->add_option("--max-triangles", run.limits.max_triangles, "largest triangle count of one primitive body")

@@ -12,6 +12,7 @@
 #include <stiffsoft/io/recorder.hpp>
 #include <stiffsoft/scene/make_simulation.hpp>
 
+#include "load_watchdog.hpp"
 #include "progress.hpp"
 #include "step_log.hpp"
 
@@ -22,7 +23,10 @@ int run_scene(const RunOptions& options) {
   if (options.threads > 0)
     threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, options.threads);
 
-  SceneSimulation run = make_simulation(options.scene, options.limits);
+  SceneSimulation run = [&] {
+    const LoadWatchdog bound(options.load_timeout, options.scene.string());
+    return make_simulation(options.scene, options.limits);
+  }();
   const SceneDescription& scene = run.scene;
   Simulation& sim = run.simulation;
   const Model& model = sim.model();

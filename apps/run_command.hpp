@@ -15,6 +15,7 @@ struct RunOptions {
   std::optional<int> steps;      ///< run this many steps instead of the scene's duration
   int threads = 0;               ///< worker threads; 0: all cores
   ElementLimits limits;          ///< largest body the scene may build (--max-tets, --max-triangles)
+  double load_timeout = 900;     ///< bound on loading and meshing (s, --load-timeout); ≤ 0: none
 };
 
 /// Runs a scene, writing frames, stats.csv, bodies.csv and scene.resolved.json into the output
