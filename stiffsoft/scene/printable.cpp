@@ -43,6 +43,20 @@ std::size_t sequence_at(std::string_view text, std::size_t i, std::uint32_t& cod
 
 bool is_control(std::uint32_t code) { return code < 0x20 || code == 0x7F || (code >= 0x80 && code <= 0x9F); }
 
+/// Calls visit(i, length, code) for each UTF-8 sequence of text in order: length 0 for a byte
+/// that starts none (the scan then goes on at the next byte). Stops, returning false, at the
+/// first visit that returns false; true when every visit did.
+template <class Visit>
+bool for_each_sequence(std::string_view text, Visit visit) {
+  for (std::size_t i = 0; i < text.size();) {
+    std::uint32_t code = 0;
+    const std::size_t length = sequence_at(text, i, code);
+    if (!visit(i, length, code)) return false;
+    i += length == 0 ? 1 : length;
+  }
+  return true;
+}
+
 void append_escaped(std::string& out, unsigned char byte) {
   constexpr char kHex[] = "0123456789ABCDEF";
   out += "\\x";
@@ -55,60 +69,36 @@ void append_escaped(std::string& out, unsigned char byte) {
 std::string printable(std::string_view text) {
   std::string out;
   out.reserve(text.size());
-  for (std::size_t i = 0; i < text.size();) {
-    std::uint32_t code = 0;
-    const std::size_t length = sequence_at(text, i, code);
+  for_each_sequence(text, [&](std::size_t i, std::size_t length, std::uint32_t code) {
     if (length == 0) {
       append_escaped(out, static_cast<unsigned char>(text[i]));
-      ++i;
-      continue;
-    }
-    if (is_control(code)) {
+    } else if (is_control(code)) {
       for (std::size_t k = 0; k < length; ++k) append_escaped(out, static_cast<unsigned char>(text[i + k]));
     } else {
       out.append(text.substr(i, length));
     }
-    i += length;
-  }
+    return true;
+  });
   return out;
 }
 
 bool is_valid_utf8(std::string_view text) {
-  for (std::size_t i = 0; i < text.size();) {
-    std::uint32_t code = 0;
-    const std::size_t length = sequence_at(text, i, code);
-    if (length == 0) return false;
-    i += length;
-  }
-  return true;
+  return for_each_sequence(text, [](std::size_t, std::size_t length, std::uint32_t) { return length > 0; });
 }
 
 bool has_control_character(std::string_view text) {
-  for (std::size_t i = 0; i < text.size();) {
-    std::uint32_t code = 0;
-    const std::size_t length = sequence_at(text, i, code);
-    if (length == 0) {
-      ++i;
-      continue;
-    }
-    if (is_control(code)) return true;
-    i += length;
-  }
-  return false;
+  return !for_each_sequence(text, [](std::size_t, std::size_t length, std::uint32_t code) {
+    return length == 0 || !is_control(code);
+  });
 }
 
 bool is_blank(std::string_view text) {
-  for (std::size_t i = 0; i < text.size();) {
-    std::uint32_t code = 0;
-    const std::size_t length = sequence_at(text, i, code);
-    if (length == 0) return false;  // an invalid byte is something, shown as \xNN
-    const bool space = code == ' ' || (code >= 0x09 && code <= 0x0D) || code == 0xA0 || code == 0x1680 ||
-                       (code >= 0x2000 && code <= 0x200B) || code == 0x2028 || code == 0x2029 || code == 0x202F ||
-                       code == 0x205F || code == 0x3000 || code == 0xFEFF;
-    if (!space) return false;
-    i += length;
-  }
-  return true;
+  // An invalid byte is something, shown as \xNN.
+  return for_each_sequence(text, [](std::size_t, std::size_t length, std::uint32_t code) {
+    return length > 0 && (code == ' ' || (code >= 0x09 && code <= 0x0D) || code == 0xA0 || code == 0x1680 ||
+                          (code >= 0x2000 && code <= 0x200B) || code == 0x2028 || code == 0x2029 ||
+                          code == 0x202F || code == 0x205F || code == 0x3000 || code == 0xFEFF);
+  });
 }
 
 }  // namespace stiffsoft
