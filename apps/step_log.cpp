@@ -35,7 +35,7 @@ void StepLog::record(const StepStats& s, const Simulation& sim) {
   std::set<int> inverted;
   if (s.inverted_tets > 0) {
     ++m_inverted_steps;
-    const std::vector<int> counts = sim.inverted_tets();
+    const std::vector<int>& counts = s.inverted_per_body;
     for (int b = 0; b < int(counts.size()); ++b) {
       if (counts[b] == 0) continue;
       const std::string& name = sim.model().bodies[b].name;

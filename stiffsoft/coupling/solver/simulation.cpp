@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 
 #include <stiffsoft/libabd/orthogonality_potential.hpp>
@@ -165,7 +166,8 @@ StepStats Simulation::step() {
   if (!m_elasticity.empty()) {
     stats.elastic_energy = m_elasticity.value({m_q, x}) /
                            (integrator_beta(m_settings.integrator) * m_settings.h * m_settings.h);
-    stats.inverted_tets = m_elasticity.inverted_count(m_q);
+    stats.inverted_per_body = m_elasticity.inverted_per_body(m_q);
+    stats.inverted_tets = std::accumulate(stats.inverted_per_body.begin(), stats.inverted_per_body.end(), 0);
   }
   stats.times = m_times;
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -77,8 +77,6 @@ class Simulation {
   Eigen::MatrixX3d node_positions() const { return m_model.node_positions(m_q); }
   /// Velocities of the soft bodies' nodes, |N|×3 (m/s): zero for fixed nodes.
   Eigen::MatrixX3d node_velocities() const;
-  /// Number of inverted tetrahedra (det F ≤ 0) of each body now, indexed like Model::bodies.
-  std::vector<int> inverted_tets() const { return m_elasticity.inverted_per_body(m_q); }
   /// Von Mises stress of every soft tetrahedron (Model::nodes.T order), Pa; empty without soft bodies.
   Eigen::VectorXd von_mises() const;
   /// The joints' linear equalities C q = d (no rows without linear joints).

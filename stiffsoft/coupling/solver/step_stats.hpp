@@ -24,6 +24,7 @@ struct StepStats {
   double orthogonality_error = 0;  ///< max_b ‖A_b A_bᵀ − I‖_F over dynamic affine bodies
   double elastic_energy = 0;     ///< Σ_e V_e ψ(F_e) of the soft bodies (J)
   int inverted_tets = 0;         ///< soft tetrahedra with det F ≤ 0 at the end of the step
+  std::vector<int> inverted_per_body;  ///< the same per body, indexed like Model::bodies; empty without soft bodies
   double kappa = 0;              ///< barrier stiffness at the end of the step
   double joint_error = 0;        ///< largest violation of the joints' linear equalities at the end of the step (m)
   double joint_force = 0;        ///< largest joint force magnitude at the end of the step (N), see Simulation::joint_forces()

@@ -1,7 +1,5 @@
 #include <stiffsoft/coupling/terms/elasticity_term.hpp>
 
-#include <numeric>
-
 #include <stiffsoft/libfem/make_material.hpp>
 
 namespace stiffsoft {
@@ -78,11 +76,6 @@ Eigen::VectorXd ElasticityTerm::von_mises(const Eigen::VectorXd& q) const {
     at += s.size();
   }
   return out;
-}
-
-int ElasticityTerm::inverted_count(const Eigen::VectorXd& q) const {
-  const std::vector<int> counts = inverted_per_body(q);
-  return std::accumulate(counts.begin(), counts.end(), 0);
 }
 
 std::vector<int> ElasticityTerm::inverted_per_body(const Eigen::VectorXd& q) const {

@@ -28,9 +28,7 @@ class ElasticityTerm final : public EnergyTerm {
   bool empty() const { return m_bodies.empty(); }
   /// Von Mises stress of every tetrahedron of the model, in Model::nodes.T order (Pa).
   Eigen::VectorXd von_mises(const Eigen::VectorXd& q) const;
-  /// Number of inverted tetrahedra (det F ≤ 0) at q.
-  int inverted_count(const Eigen::VectorXd& q) const;
-  /// Number of inverted tetrahedra of each body at q, indexed like Model::bodies (0 for affine ones).
+  /// Number of inverted tetrahedra (det F ≤ 0) of each body at q, indexed like Model::bodies (0 for affine ones).
   std::vector<int> inverted_per_body(const Eigen::VectorXd& q) const;
 
  private:
