@@ -39,7 +39,9 @@ std::string shape_key(char kind, const Eigen::MatrixX3d& V) {
 
 }  // namespace
 
-BulletEngine::BulletEngine(const PeerScene& scene, double margin) : m_h(scene.dt), m_margin(margin) {
+BulletEngine::BulletEngine(const PeerScene& scene, const BulletSettings& settings)
+    : m_h(scene.dt), m_settings(settings) {
+  const double margin = settings.margin;
   m_configuration = std::make_unique<btDefaultCollisionConfiguration>();
   m_dispatcher = std::make_unique<btCollisionDispatcher>(m_configuration.get());
   btGImpactCollisionAlgorithm::registerAlgorithm(m_dispatcher.get());
@@ -59,7 +61,8 @@ BulletEngine::BulletEngine(const PeerScene& scene, double margin) : m_h(scene.dt
     if (!body.fixed) std::tie(Q, moments) = principal_axes(body.inertia);
     const Eigen::MatrixX3d V = body.x_bar * Q;  // rows x'ᵀ = x̄ᵀ Q
 
-    const char kind = body.fixed && body.box ? 'b' : body.convex ? 'h' : body.fixed ? 't' : 'g';
+    const bool hull = body.convex && settings.shapes == BulletShapes::hulls;
+    const char kind = body.fixed && body.box ? 'b' : hull ? 'h' : body.fixed ? 't' : 'g';
     const std::string key = shape_key(kind, V);
     auto it = shared.find(key);
     if (it == shared.end()) {
@@ -124,6 +127,10 @@ BulletEngine::~BulletEngine() {
   for (auto& body : m_bodies) m_world->removeRigidBody(body.get());
 }
 
+std::string BulletEngine::name() const {
+  return m_settings.shapes == BulletShapes::meshes ? "bullet_mesh" : "bullet";
+}
+
 std::string BulletEngine::settings() const {
   const btContactSolverInfo& s = m_world->getSolverInfo();
   char line[640];
@@ -135,7 +142,7 @@ std::string BulletEngine::settings() const {
                 btGetVersion(), sizeof(btScalar) == 8 ? "double" : "single", s.m_numIterations, double(s.m_erp),
                 double(s.m_erp2), double(s.m_globalCfm), s.m_splitImpulse ? "on" : "off",
                 double(s.m_splitImpulsePenetrationThreshold), double(s.m_warmstartingFactor), m_hulls, m_gimpact,
-                m_boxes, m_trimeshes, m_margin);
+                m_boxes, m_trimeshes, m_settings.margin);
   return line;
 }
 

@@ -1,16 +1,18 @@
 #pragma once
 /// @file Bullet (btDiscreteDynamicsWorld) behind the peer benchmark's Engine interface.
 ///
-/// Shapes: a dynamic convex body is a btConvexHullShape of its vertices; a dynamic non-convex
-/// body (a torus, a ring) is a btGImpactMeshShape of its triangles; a fixed box is a btBoxShape;
-/// any other fixed body is a btConvexHullShape (convex) or a btBvhTriangleMeshShape. Every
-/// hull, GImpact and triangle-mesh shape gets the collision margin `margin` (Bullet adds it
-/// around those shapes, its default is 0.04 m, as large as the bodies); a btBoxShape keeps
-/// its margin inside its extents. Bodies sit in their principal-axes frames (Bullet takes a
-/// diagonal inertia); friction is √μ per body because Bullet multiplies the two bodies'
-/// coefficients; restitution 0 (default). Everything else is Bullet's default:
-/// btSequentialImpulseConstraintSolver, 10 iterations, ERP 0.2, split impulse, no CCD,
-/// deactivation (sleeping) on, single precision.
+/// Shapes (BulletShapes): with `hulls` ("bullet"), a dynamic convex body is a
+/// btConvexHullShape of its vertices and a dynamic non-convex body (a torus, a ring) a
+/// btGImpactMeshShape of its triangles; with `meshes` ("bullet_mesh", the representation the
+/// ABD and Rigid-IPC papers compared against), every dynamic body is a btGImpactMeshShape of
+/// its triangles. A fixed box is a btBoxShape; any other fixed body is a btConvexHullShape
+/// (convex, `hulls` only) or a btBvhTriangleMeshShape. Every hull, GImpact and triangle-mesh
+/// shape gets the collision margin `margin` (Bullet adds it around those shapes, its default
+/// is 0.04 m, as large as the bodies); a btBoxShape keeps its margin inside its extents.
+/// Bodies sit in their principal-axes frames (Bullet takes a diagonal inertia); friction is
+/// √μ per body because Bullet multiplies the two bodies' coefficients; restitution 0
+/// (default). Everything else is Bullet's default: btSequentialImpulseConstraintSolver, 10
+/// iterations, ERP 0.2, split impulse, no CCD, deactivation (sleeping) on, single precision.
 
 #include <LinearMath/btScalar.h>
 
@@ -31,13 +33,26 @@ class btStridingMeshInterface;
 
 namespace stiffsoft::peers {
 
+/// Which Bullet shapes the bodies that are not fixed boxes get.
+enum class BulletShapes {
+  hulls,   ///< "bullet": convex bodies as btConvexHullShape, non-convex ones as triangle meshes
+  meshes,  ///< "bullet_mesh": every body as a triangle mesh (btGImpactMeshShape, fixed: BVH)
+};
+
+/// How BulletEngine builds its world.
+struct BulletSettings {
+  double margin = 0.04;                       ///< margin of hull and mesh shapes (m); Bullet's default
+  BulletShapes shapes = BulletShapes::hulls;  ///< shape of each body
+};
+
 /// Bullet's world for one scene.
 class BulletEngine final : public Engine {
  public:
-  /// Builds the world; `margin` is the collision margin of hull and mesh shapes (m).
-  BulletEngine(const PeerScene& scene, double margin);
+  /// Builds the world.
+  BulletEngine(const PeerScene& scene, const BulletSettings& settings);
   ~BulletEngine() override;
-  std::string name() const override { return "bullet"; }
+  /// "bullet" (hulls) or "bullet_mesh" (meshes).
+  std::string name() const override;
   std::string settings() const override;
   void step() override;
   std::vector<Penetration> penetrations() override;
@@ -48,7 +63,7 @@ class BulletEngine final : public Engine {
 
  private:
   double m_h;
-  double m_margin;
+  BulletSettings m_settings;
   std::unique_ptr<btDefaultCollisionConfiguration> m_configuration;
   std::unique_ptr<btCollisionDispatcher> m_dispatcher;
   std::unique_ptr<btBroadphaseInterface> m_broadphase;

@@ -44,7 +44,7 @@ struct StepDetails {
 class Engine {
  public:
   virtual ~Engine() = default;
-  /// "stiffsoft", "bullet" or "mujoco".
+  /// "stiffsoft", "stiffsoft-coarse", "bullet_mesh", "bullet" or "mujoco".
   virtual std::string name() const = 0;
   /// One line naming the solver settings in force (reported with the results).
   virtual std::string settings() const = 0;

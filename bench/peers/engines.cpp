@@ -15,6 +15,7 @@ namespace stiffsoft::peers {
 std::vector<std::string> available_engines() {
   std::vector<std::string> names{"stiffsoft", "stiffsoft-coarse"};
 #ifdef STIFFSOFT_WITH_BULLET
+  names.push_back("bullet_mesh");
   names.push_back("bullet");
 #endif
 #ifdef STIFFSOFT_WITH_MUJOCO
@@ -23,12 +24,22 @@ std::vector<std::string> available_engines() {
   return names;
 }
 
+std::string available_engine_list() {
+  std::string list;
+  for (const std::string& name : available_engines()) list += (list.empty() ? "" : ", ") + name;
+  return list;
+}
+
 std::unique_ptr<Engine> make_engine(const std::string& name, const PeerScene& scene, const EngineOptions& options) {
   if (name == "stiffsoft") return std::make_unique<StiffsoftEngine>(scene, scene.settings, name);
   if (name == "stiffsoft-coarse") return std::make_unique<StiffsoftEngine>(scene, coarse_settings(scene), name);
 #ifdef STIFFSOFT_WITH_BULLET
-  if (name == "bullet")
-    return std::make_unique<BulletEngine>(scene, options.bullet_margin > 0 ? options.bullet_margin : 0.5 * scene.dhat);
+  if (name == "bullet" || name == "bullet_mesh") {
+    BulletSettings settings;
+    settings.margin = options.bullet_margin > 0 ? options.bullet_margin : 0.5 * scene.dhat;
+    settings.shapes = name == "bullet_mesh" ? BulletShapes::meshes : BulletShapes::hulls;
+    return std::make_unique<BulletEngine>(scene, settings);
+  }
 #endif
 #ifdef STIFFSOFT_WITH_MUJOCO
   if (name == "mujoco") {
@@ -42,14 +53,8 @@ std::unique_ptr<Engine> make_engine(const std::string& name, const PeerScene& sc
   }
 #endif
   (void)options;
-  throw std::invalid_argument("engine '" + name + "' is not available in this build (available: stiffsoft, stiffsoft-coarse" +
-#ifdef STIFFSOFT_WITH_BULLET
-                              std::string(", bullet") +
-#endif
-#ifdef STIFFSOFT_WITH_MUJOCO
-                              std::string(", mujoco") +
-#endif
-                              ")");
+  throw std::invalid_argument("engine '" + name + "' is not available in this build (available: " +
+                              available_engine_list() + ")");
 }
 
 }  // namespace stiffsoft::peers

@@ -18,8 +18,12 @@ struct EngineOptions {
 };
 
 /// "stiffsoft" (the scene's settings), "stiffsoft-coarse" (coarse_settings: libuipc's friction
-/// smoothing and Newton tolerance) and the peers compiled in ("bullet", "mujoco").
+/// smoothing and Newton tolerance) and the peers compiled in ("bullet_mesh": Bullet with every
+/// dynamic body a triangle mesh, "bullet": Bullet with convex hulls, "mujoco"), in that order.
 std::vector<std::string> available_engines();
+
+/// available_engines() joined by ", " (for messages and --help).
+std::string available_engine_list();
 
 /// A fresh engine of that name on the scene at t = 0; throws std::invalid_argument for a name
 /// that is not available.

@@ -1,7 +1,7 @@
-/// @file peer_bench: stiffsoft side by side with Bullet and MuJoCo on the same scene files
-/// (docs/peers.md). For each scene, time step and engine: median ms per step, Newton
-/// iterations (stiffsoft), and the accuracy checks of peers/accuracy.hpp. Writes a CSV
-/// (bench/peers/report_peers.py turns it into the Markdown table and the plot).
+/// @file peer_bench: stiffsoft side by side with Bullet (convex hulls and triangle meshes) and
+/// MuJoCo on the same scene files (docs/peers.md). For each scene, time step and engine: median
+/// ms per step, Newton iterations (stiffsoft), and the accuracy checks of peers/accuracy.hpp.
+/// Writes a CSV (bench/peers/report_peers.py turns it into the Markdown table and the plot).
 /// `peer_bench --help` lists the options; `peer_bench --verify` checks the scene mapping.
 
 #include <CLI/CLI.hpp>
@@ -50,7 +50,9 @@ int main(int argc, char** argv) {
   std::filesystem::path scene_dir = STIFFSOFT_SOURCE_DIR "/scenes", csv = "peers.csv";
   app.add_option("--scenes", scenes, "scene names in the scene folder")->delimiter(',');
   app.add_option("--dt", dts, "time steps (s), e.g. 1/240 or 0.01")->delimiter(',');
-  app.add_option("--engines", engines, "engines to run (stiffsoft, bullet, mujoco)")->delimiter(',');
+  app.add_option("--engines", engines,
+                 "engines to run (default: all in this build: " + available_engine_list() + ")")
+      ->delimiter(',');
   app.add_option("--duration", duration, "simulated time of every run (s); steps = round(duration / h)");
   app.add_option("--threads", threads, "stiffsoft worker threads (0: all cores); Bullet and MuJoCo use one");
   app.add_option("--scene-dir", scene_dir, "folder of the scenes");
@@ -59,7 +61,7 @@ int main(int argc, char** argv) {
                  "stop a run after this much stepping wall time (s) and report it unfinished; 0: no limit");
   app.add_option("--check-fps", options.check_fps, "frames per simulated second checked for intersections");
   app.add_option("--bullet-margin", options.engines.bullet_margin,
-                 "Bullet margin of hull and mesh shapes (m); 0: half the scene's d^");
+                 "Bullet (bullet, bullet_mesh) margin of hull and mesh shapes (m); 0: half the scene's d^");
   app.add_option("--mujoco-nconmax", options.engines.mujoco_nconmax, "MuJoCo contact buffer (0: automatic)");
   app.add_option("--mujoco-njmax", options.engines.mujoco_njmax, "MuJoCo constraint rows (0: automatic)");
   app.add_flag("--verify", verify, "check that each engine holds the same scene as stiffsoft, then exit");
@@ -90,7 +92,7 @@ int main(int argc, char** argv) {
           const RunResult r = run_engine(engine, scene, duration, options);
           write_csv_row(out, r);
           const AccuracyReport& a = r.accuracy;
-          std::printf("%-9s %-14s h = %-6s %5d steps  %9.3f ms/step", r.engine.c_str(), r.scene.c_str(),
+          std::printf("%-11s %-14s h = %-6s %5d steps  %9.3f ms/step", r.engine.c_str(), r.scene.c_str(),
                       dt_text.c_str(), r.steps, r.ms_median);
           if (r.newton_mean >= 0) std::printf("  %.2f it.", r.newton_mean);
           std::printf("  intersecting frames %d/%d  overlap %s  engine depth %s  %s%s\n", a.frames_intersecting,

@@ -19,11 +19,15 @@ import re
 import os
 import sys
 
-ENGINES = ["stiffsoft", "stiffsoft-coarse", "bullet", "mujoco"]
+ENGINES = ["stiffsoft", "stiffsoft-coarse", "bullet_mesh", "bullet", "mujoco"]
 OURS = ["stiffsoft", "stiffsoft-coarse"]
-LABEL = {"stiffsoft": "stiffsoft", "stiffsoft-coarse": "stiffsoft coarse", "bullet": "Bullet", "mujoco": "MuJoCo"}
+LABEL = {"stiffsoft": "stiffsoft", "stiffsoft-coarse": "stiffsoft coarse", "bullet_mesh": "Bullet mesh",
+         "bullet": "Bullet", "mujoco": "MuJoCo"}
+# The seed's Bullet set-up: every body a triangle mesh (GImpact), as in the ABD and Rigid-IPC papers;
+# its table is set beside the first of these that the CSVs hold.
+SEED_PEERS = ["bullet_mesh", "bullet"]
 SCENE_ORDER = ["light", "medium", "full", "house_of_cards", "wrecking_ball", "chain_net"]
-# Seed 001 ("Compare with Bullet"): ABD ms, Bullet ms, ABD Newton iterations, per pile and 1/h.
+# Seed 001 ("Compare with Bullet"): ABD ms, Bullet(-mesh) ms, ABD Newton iterations, per pile and 1/h.
 SEED = {
     ("light", 100): (3, 2, 1.9), ("light", 240): (2.2, 1.5, 1.5), ("light", 1000): (2, 3, 1.1),
     ("medium", 100): (92, 68, 7.6), ("medium", 240): (41, 58, 2.9), ("medium", 1000): (19, 82, 1.3),
@@ -164,15 +168,17 @@ def markdown(rows, comments):
                                              [r["unconverged"]]) + " |")
 
     seed_rows = [(s, p) for (s, p) in keys if (s, p) in SEED]
-    if seed_rows and ours and "bullet" in engines:
-        out += ["", "Beside the seed's table (seed 001, its machine; ratios are each table's ABD or stiffsoft time "
-                "over its own Bullet time):", ""]
-        out.append("| pile | h | " + " | ".join(f"{LABEL[o]} / Bullet here" for o in ours) +
+    peer = next((e for e in SEED_PEERS if e in engines), None)
+    if seed_rows and ours and peer:
+        name = LABEL[peer]
+        out += ["", f"Beside the seed's table (seed 001, its machine; ratios are each table's ABD or stiffsoft time "
+                f"over its own Bullet time, here {name}):", ""]
+        out.append("| pile | h | " + " | ".join(f"{LABEL[o]} / {name} here" for o in ours) +
                    " | seed ABD / Bullet | " + " | ".join(f"{LABEL[o]} it." for o in ours) +
-                   " | seed ABD it. | Bullet ms here | seed Bullet ms |")
+                   f" | seed ABD it. | {name} ms here | seed Bullet ms |")
         out.append("|" + "---|" * (6 + 2 * len(ours)))
         for s, p in seed_rows:
-            bullet = rows.get(("bullet", s, p))
+            bullet = rows.get((peer, s, p))
             abd, seed_bullet, seed_it = SEED[(s, p)]
             ratios, its = [], []
             for o in ours:
@@ -204,7 +210,7 @@ def plot(rows, path, per_s=240):
               f"no plot written to {path}", file=sys.stderr)
         return False
     fig, ax = plt.subplots(figsize=(7, 4.5))
-    markers = {"stiffsoft": "o", "stiffsoft-coarse": "D", "bullet": "s", "mujoco": "^"}
+    markers = {"stiffsoft": "o", "stiffsoft-coarse": "D", "bullet_mesh": "v", "bullet": "s", "mujoco": "^"}
     for e in ENGINES:
         points = sorted((int(r["bodies"]), num(r, "ms_median"), r["scene"]) for (en, s, p), r in rows.items()
                         if en == e and p == per_s and not unfinished(r))

@@ -18,7 +18,7 @@ double farthest_nearest(const Eigen::MatrixX3d& X, const Eigen::MatrixX3d& Y) {
 }
 
 int report(bool ok, const std::string& engine, const std::string& what) {
-  std::printf("%s  %-9s %s\n", ok ? "PASS" : "FAIL", engine.c_str(), what.c_str());
+  std::printf("%s  %-11s %s\n", ok ? "PASS" : "FAIL", engine.c_str(), what.c_str());
   std::fflush(stdout);
   return ok ? 0 : 1;
 }
