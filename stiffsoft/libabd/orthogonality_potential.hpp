@@ -14,7 +14,8 @@ double orthogonality_potential(const Vector12d& q, double kappa, double volume);
 Vector12d orthogonality_potential_gradient(const Vector12d& q, double kappa, double volume);
 
 /// ∂²V⊥/∂aᵢ∂a_k = 4κν (δᵢₖ Σⱼ aⱼaⱼᵀ + a_k aᵢᵀ + Gᵢₖ I₃); projected to PSD (negative eigenvalues of
-/// the 9×9 A block set to zero) when `project_psd`.
+/// the 9×9 A block set to zero) when `project_psd`, from the analytic eigensystem of the
+/// isotropic V⊥ = κν Σᵢ (σᵢ² − 1)² in the singular values of A (Smith et al. 2019).
 Matrix12d orthogonality_potential_hessian(const Vector12d& q, double kappa, double volume,
                                           bool project_psd);
 

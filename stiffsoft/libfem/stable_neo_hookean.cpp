@@ -1,8 +1,12 @@
 #include <stiffsoft/libfem/stable_neo_hookean.hpp>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
+#include <array>
+#include <cmath>
 
 #include <stiffsoft/libfem/determinant_derivatives.hpp>
+#include <stiffsoft/libfem/rotation_variant_svd.hpp>
 
 namespace stiffsoft::fem {
 
@@ -23,6 +27,46 @@ Matrix9d StableNeoHookean::dPdF(const Eigen::Matrix3d& F) const {
   const Vector9d g = vec(cofactor(F));
   return m_mu * Matrix9d::Identity() + m_lambda * g * g.transpose() +
          m_lambda * (F.determinant() - m_alpha) * determinant_hessian(F);
+}
+
+Matrix9d StableNeoHookean::dPdF_projected(const Eigen::Matrix3d& F) const {
+  // Smith, de Goes, Kim 2019 ("Analytic Eigensystems for Isotropic Distortion Energies"): with
+  // F = U Σ Vᵀ, ∂P/∂F has the eigenvectors vec(U E Vᵀ) for the twist and flip of each pair of
+  // axes (i, j), E = (eᵢeⱼᵀ ∓ eⱼeᵢᵀ)/√2 with eigenvalues μ̂ ± λ̂ (J − α) σ_k (k the third axis),
+  // and three in the span of the scalings U eᵢeᵢᵀ Vᵀ, the eigenvectors of the 3×3 ∂²ψ/∂σ².
+  // Summing the positive ones gives the clamped projection without a 9×9 decomposition.
+  const RotationVariantSvd svd = rotation_variant_svd(F);
+  const Eigen::Vector3d& s = svd.sigma;
+  const double c = m_lambda * (F.determinant() - m_alpha);
+  Matrix9d H = Matrix9d::Zero();
+  const auto add = [&](double eigenvalue, const Eigen::Matrix3d& D) {
+    if (eigenvalue <= 0) return;
+    const Vector9d d = vec(D);
+    H.noalias() += eigenvalue * d * d.transpose();
+  };
+  constexpr int pairs[3][3] = {{0, 1, 2}, {1, 2, 0}, {0, 2, 1}};
+  const double r = 1 / std::sqrt(2.0);
+  for (const auto& [i, j, k] : pairs) {
+    const Eigen::Matrix3d a = r * svd.U.col(i) * svd.V.col(j).transpose();
+    const Eigen::Matrix3d b = r * svd.U.col(j) * svd.V.col(i).transpose();
+    add(m_mu + c * s(k), a - b);  // twist
+    add(m_mu - c * s(k), a + b);  // flip
+  }
+  // ∂²ψ/∂σ² = μ̂ I + λ̂ ∇J ∇Jᵀ + λ̂ (J − α) ∇²J with J = σ₀σ₁σ₂.
+  const Eigen::Vector3d grad_J(s(1) * s(2), s(0) * s(2), s(0) * s(1));
+  Eigen::Matrix3d A = m_mu * Eigen::Matrix3d::Identity() + m_lambda * grad_J * grad_J.transpose();
+  for (const auto& [i, j, k] : pairs) {
+    A(i, j) += c * s(k);
+    A(j, i) += c * s(k);
+  }
+  std::array<Eigen::Matrix3d, 3> uv;  // the scalings u_i v_iᵀ
+  for (int i = 0; i < 3; ++i) uv[i] = svd.U.col(i) * svd.V.col(i).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(A);
+  for (int m = 0; m < 3; ++m) {
+    const Eigen::Vector3d z = es.eigenvectors().col(m);
+    add(es.eigenvalues()(m), z(0) * uv[0] + z(1) * uv[1] + z(2) * uv[2]);
+  }
+  return H;
 }
 
 }  // namespace stiffsoft::fem

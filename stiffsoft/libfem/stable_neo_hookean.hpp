@@ -25,6 +25,10 @@ class StableNeoHookean final : public Material {
   Eigen::Matrix3d P(const Eigen::Matrix3d& F) const override;
   /// ∂P/∂F = μ̂ I₉ + λ̂ vec(cof F) vec(cof F)ᵀ + λ̂ (J − α) ∂²J/∂F².
   Matrix9d dPdF(const Eigen::Matrix3d& F) const override;
+  /// ∂P/∂F with its negative eigenvalues set to zero, from its analytic eigensystem (Smith,
+  /// de Goes, Kim 2019): six twist and flip eigenpairs in closed form and three from the 3×3
+  /// ∂²ψ/∂σ² of the singular values, instead of a numerical 9×9 decomposition.
+  Matrix9d dPdF_projected(const Eigen::Matrix3d& F) const override;
 
   /// μ̂ = μ (Pa).
   double mu_hat() const { return m_mu; }

@@ -9,6 +9,7 @@
 
 #include "finite_differences.hpp"
 #include <stiffsoft/libfem/make_material.hpp>
+#include <stiffsoft/libfem/project_psd.hpp>
 
 using namespace stiffsoft::fem;
 using stiffsoft::testing::fd_gradient;
@@ -95,6 +96,22 @@ TEST_P(MaterialSuite, ProjectedStressDerivativeIsPositiveSemiDefinite) {
     // The projection only removes negative curvature: Hp − H = Q max(−Λ, 0) Qᵀ is PSD.
     EXPECT_GE(min_eigenvalue(Hp - H), -1e-10 * scale) << "F =\n" << F;
     EXPECT_TRUE(material->dPdF(F, true).isApprox(Hp));
+  }
+}
+
+TEST_P(MaterialSuite, ProjectedStressDerivativeIsTheEigenClampOfTheStressDerivative) {
+  // Whatever a model computes it by (an analytic eigensystem for stable neo-Hookean), the result
+  // is the nearest PSD matrix: the numerical eigen-decomposition with negative eigenvalues
+  // clamped to zero.
+  std::mt19937 rng(6);
+  std::vector<Eigen::Matrix3d> Fs = sample_deformations(rng);
+  Fs.push_back(with_singular_values(rng, {1, 1, 1}));           // repeated singular values
+  Fs.push_back(with_singular_values(rng, {0.9, 0.9, 0.5}));
+  Fs.push_back(with_singular_values(rng, {0.3, 0.2, -0.2}));    // inverted, σ₁ + σ₂ = 0
+  for (const Eigen::Matrix3d& F : Fs) {
+    const Matrix9d expected = project_psd<9>(material->dPdF(F));
+    EXPECT_LT((material->dPdF_projected(F) - expected).norm(), 1e-10 * std::max(expected.norm(), kE))
+        << "F =\n" << F;
   }
 }
 

@@ -132,7 +132,8 @@ inline Matrix12d friction_potential_hessian(const FrictionStencil& f, const Vect
     M -= w * uh * uh.transpose();
   }
   if (project_psd) M = project_to_psd<2>(M);
-  return mu * f.normal_force * T.transpose() * M * T;
+  // Coefficient-based product: Eigen would send a 12×2×12 product to its blocked GEMM.
+  return (mu * f.normal_force) * T.transpose().lazyProduct(M * T);
 }
 
 /// The isotropic majorizer of D's Hessian: μ λ Tᵀ (f₁(y)/y) I T, N/m. Its quadratic model lies

@@ -4,7 +4,7 @@
 
 namespace stiffsoft {
 
-BlockHessian::BlockHessian(const std::vector<DofBlock>& blocks) : m_blocks(blocks) {
+BlockHessian::BlockHessian(const std::vector<DofBlock>& blocks) : m_blocks(blocks), m_row_slots(blocks.size()) {
   m_diagonal.reserve(blocks.size());
   std::size_t at = 0;
   for (const DofBlock& b : blocks) {
@@ -12,7 +12,39 @@ BlockHessian::BlockHessian(const std::vector<DofBlock>& blocks) : m_blocks(block
     at += std::size_t(b.size) * b.size;
     m_num_dofs = b.offset + b.size;
   }
+  m_diagonal_size = at;
   m_pool.assign(at, 0.0);
+}
+
+void BlockHessian::clear() {
+  m_previous_version = pattern_version();
+  m_previous_live = m_live;
+  m_live = 0;
+  m_grew = false;
+  ++m_generation;
+  // Diagonal blocks are always part of the matrix; off-diagonal ones are zeroed on their first
+  // touch in the new assembly (live_slot), so untouched storage costs nothing.
+  std::fill(m_pool.begin(), m_pool.begin() + std::ptrdiff_t(m_diagonal_size), 0.0);
+}
+
+BlockHessian::Slot& BlockHessian::live_slot(int row, int column) {
+  for (int k : m_row_slots[row]) {
+    Slot& s = m_slots[k];
+    if (s.column != column) continue;
+    if (!live(s)) {
+      m_grew = m_grew || s.generation + 1 != m_generation;
+      s.generation = m_generation;
+      block_at(s.at, row, column).setZero();
+      ++m_live;
+    }
+    return s;
+  }
+  m_row_slots[row].push_back(int(m_slots.size()));
+  m_slots.push_back({row, column, m_pool.size(), m_generation});
+  m_pool.resize(m_pool.size() + std::size_t(m_blocks[row].size) * m_blocks[column].size, 0.0);
+  m_grew = true;
+  ++m_live;
+  return m_slots.back();
 }
 
 void BlockHessian::add(int i, int j, const Eigen::Ref<const Eigen::MatrixXd>& H) {
@@ -20,75 +52,95 @@ void BlockHessian::add(int i, int j, const Eigen::Ref<const Eigen::MatrixXd>& H)
     block_at(m_diagonal[i], i, i) += H;
     return;
   }
-  const std::int64_t n = num_blocks();
-  const bool upper = i < j;
-  const std::int64_t key = upper ? i * n + j : j * n + i;
-  const int r = upper ? i : j, c = upper ? j : i;
-  auto [it, fresh] = m_off_diagonal.try_emplace(key, m_pool.size());
-  if (fresh) m_pool.resize(m_pool.size() + std::size_t(m_blocks[r].size) * m_blocks[c].size, 0.0);
-  if (upper)
-    block_at(it->second, r, c) += H;
+  if (i < j)
+    block_at(live_slot(i, j).at, i, j) += H;
   else
-    block_at(it->second, r, c) += H.transpose();
+    block_at(live_slot(j, i).at, j, i) += H.transpose();
 }
 
 void BlockHessian::decouple(const std::vector<char>& held) {
-  const std::int64_t n = num_blocks();
-  for (const auto& [key, at] : m_off_diagonal) {
-    const int i = int(key / n), j = int(key % n);
-    if (held[i] || held[j]) block_at(at, i, j).setZero();
-  }
+  for (const Slot& s : m_slots)
+    if (live(s) && (held[s.row] || held[s.column])) block_at(s.at, s.row, s.column).setZero();
+}
+
+std::uint64_t BlockHessian::pattern_version() const {
+  // Within an assembly slots only ever join the pattern, so a pattern that is not the previous
+  // one is fixed by the assembly's number and its count of live slots.
+  if (!m_grew && m_live == m_previous_live) return m_previous_version;
+  return (m_generation << 32) | m_live;
 }
 
 std::vector<std::int64_t> BlockHessian::pattern() const {
+  const std::int64_t n = num_blocks();
   std::vector<std::int64_t> keys;
-  keys.reserve(m_off_diagonal.size());
-  for (const auto& [key, at] : m_off_diagonal) keys.push_back(key);
+  keys.reserve(m_live);
+  for (const Slot& s : m_slots)
+    if (live(s)) keys.push_back(s.row * n + s.column);
   std::sort(keys.begin(), keys.end());
   return keys;
 }
 
+std::vector<std::vector<int>> BlockHessian::column_slots() const {
+  std::vector<std::vector<int>> columns(m_blocks.size());
+  // Rows in ascending order, so each column's list comes out sorted by row.
+  for (const std::vector<int>& row : m_row_slots)
+    for (int k : row)
+      if (live(m_slots[k])) columns[m_slots[k].column].push_back(k);
+  return columns;
+}
+
 Eigen::SparseMatrix<double> BlockHessian::upper() const {
-  const std::int64_t n = num_blocks();
-  // Column-wise block lists so the matrix is filled in order, without triplet sorting.
-  std::vector<std::vector<std::pair<int, std::size_t>>> column_blocks(n);
-  for (const auto& [key, at] : m_off_diagonal) column_blocks[key % n].push_back({int(key / n), at});
-  for (auto& c : column_blocks) std::sort(c.begin(), c.end());
+  const int n = num_blocks();
+  const std::vector<std::vector<int>> columns = column_slots();
   Eigen::SparseMatrix<double> H(m_num_dofs, m_num_dofs);
-  Eigen::VectorXi nnz(m_num_dofs);
+  // Filled column by column in row order: the compressed arrays are written directly.
+  Eigen::SparseMatrix<double>::StorageIndex* outer = H.outerIndexPtr();
+  std::size_t nnz = 0;
   for (int bj = 0; bj < n; ++bj) {
     int above = 0;
-    for (const auto& [bi, at] : column_blocks[bj]) above += m_blocks[bi].size;
-    for (int c = 0; c < m_blocks[bj].size; ++c) nnz[m_blocks[bj].offset + c] = above + c + 1;
+    for (int k : columns[bj]) above += m_blocks[m_slots[k].row].size;
+    for (int c = 0; c < m_blocks[bj].size; ++c) nnz += std::size_t(above + c + 1);
   }
-  H.reserve(nnz);
+  H.resizeNonZeros(Eigen::Index(nnz));
+  double* values = H.valuePtr();
+  Eigen::SparseMatrix<double>::StorageIndex* inner = H.innerIndexPtr();
+  std::size_t k = 0;
+  outer[0] = 0;
   for (int bj = 0; bj < n; ++bj) {
     const DofBlock& col_block = m_blocks[bj];
     const ConstBlock diagonal = block_at(m_diagonal[bj], bj, bj);
     for (int c = 0; c < col_block.size; ++c) {
       const int col = col_block.offset + c;
-      for (const auto& [bi, at] : column_blocks[bj]) {
-        const ConstBlock block = block_at(at, bi, bj);
-        for (int r = 0; r < m_blocks[bi].size; ++r) H.insert(m_blocks[bi].offset + r, col) = block(r, c);
+      for (int s : columns[bj]) {
+        const Slot& slot = m_slots[s];
+        const ConstBlock block = block_at(slot.at, slot.row, bj);
+        const DofBlock& row_block = m_blocks[slot.row];
+        for (int r = 0; r < row_block.size; ++r, ++k) {
+          inner[k] = row_block.offset + r;
+          values[k] = block(r, c);
+        }
       }
-      for (int r = 0; r <= c; ++r) H.insert(col_block.offset + r, col) = diagonal(r, c);
+      for (int r = 0; r <= c; ++r, ++k) {
+        inner[k] = col_block.offset + r;
+        values[k] = diagonal(r, c);
+      }
+      outer[col + 1] = Eigen::SparseMatrix<double>::StorageIndex(k);
     }
   }
-  H.makeCompressed();
   return H;
 }
 
 Eigen::VectorXd BlockHessian::multiply(const Eigen::VectorXd& x) const {
-  const std::int64_t n = num_blocks();
+  const int n = num_blocks();
   Eigen::VectorXd y = Eigen::VectorXd::Zero(x.size());
   for (int b = 0; b < n; ++b) {
     const DofBlock& d = m_blocks[b];
     y.segment(d.offset, d.size) += block_at(m_diagonal[b], b, b) * x.segment(d.offset, d.size);
   }
-  for (const auto& [key, at] : m_off_diagonal) {
-    const int i = int(key / n), j = int(key % n);
-    const DofBlock &bi = m_blocks[i], &bj = m_blocks[j];
-    const ConstBlock block = block_at(at, i, j);
+  for (const Slot& s : m_slots) {
+    if (!live(s)) continue;
+    const DofBlock &bi = m_blocks[s.row], &bj = m_blocks[s.column];
+    const ConstBlock block = block_at(s.at, s.row, s.column);
     y.segment(bi.offset, bi.size) += block * x.segment(bj.offset, bj.size);
     y.segment(bj.offset, bj.size) += block.transpose() * x.segment(bi.offset, bi.size);
   }

@@ -6,7 +6,6 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 #include <stiffsoft/coupling/model/model.hpp>
@@ -15,10 +14,18 @@ namespace stiffsoft {
 
 /// Symmetric block-sparse matrix over variable-size DOF blocks; only blocks (i, j) with i ≤ j
 /// are stored, each dense and column-major in one pool.
+///
+/// Meant to be reused: clear() starts the next assembly but keeps the storage of every block
+/// seen so far, so that assembling the same pattern again allocates nothing and finds each
+/// block by a short scan of its row (no hashing). The matrix is what was added since the last
+/// clear(): blocks not touched since then are not part of it (nor of its pattern).
 class BlockHessian {
  public:
   /// An empty matrix over the given DOF blocks (contiguous, in order).
   explicit BlockHessian(const std::vector<DofBlock>& blocks);
+  /// Starts a new assembly: the matrix becomes zero with an empty off-diagonal pattern; the
+  /// storage stays for reuse.
+  void clear();
   /// Adds H (size_i × size_j) to block (i, j); for i > j the transpose is added to (j, i).
   void add(int i, int j, const Eigen::Ref<const Eigen::MatrixXd>& H);
   /// Zeroes every off-diagonal block in the row or column of a block with held[b] ≠ 0 (DOFs
@@ -27,8 +34,13 @@ class BlockHessian {
   void decouple(const std::vector<char>& held);
   /// The upper triangle as a compressed sparse column matrix (n × n, n = number of DOFs).
   Eigen::SparseMatrix<double> upper() const;
-  /// The off-diagonal block pairs, sorted: equal lists mean equal sparsity patterns.
+  /// The off-diagonal block pairs (key i·n + j, i < j), sorted: equal lists mean equal
+  /// sparsity patterns.
   std::vector<std::int64_t> pattern() const;
+  /// A number for the current sparsity pattern: two readings from one BlockHessian are equal
+  /// only if the patterns are (the same pattern assembled again after clear() keeps its
+  /// number, so a solver need not analyse it again).
+  std::uint64_t pattern_version() const;
   /// y = H x for the full symmetric matrix.
   Eigen::VectorXd multiply(const Eigen::VectorXd& x) const;
   /// Number of blocks per side.
@@ -37,18 +49,37 @@ class BlockHessian {
  private:
   using Block = Eigen::Map<Eigen::MatrixXd>;
   using ConstBlock = Eigen::Map<const Eigen::MatrixXd>;
+  /// One stored off-diagonal block (row < column).
+  struct Slot {
+    int row, column;
+    std::size_t at;             ///< pool offset
+    std::uint64_t generation;   ///< the assembly that last touched it
+  };
   Block block_at(std::size_t at, int i, int j) {
     return Block(m_pool.data() + at, m_blocks[i].size, m_blocks[j].size);
   }
   ConstBlock block_at(std::size_t at, int i, int j) const {
     return ConstBlock(m_pool.data() + at, m_blocks[i].size, m_blocks[j].size);
   }
+  /// The slot of block (row, column), row < column, created if new; zeroed and marked live on
+  /// its first touch in this assembly.
+  Slot& live_slot(int row, int column);
+  /// Whether a slot is part of the current matrix.
+  bool live(const Slot& s) const { return s.generation == m_generation; }
+  /// The live slots of each block column, by ascending row.
+  std::vector<std::vector<int>> column_slots() const;
 
   std::vector<DofBlock> m_blocks;
   int m_num_dofs = 0;
-  std::vector<double> m_pool;                                  // dense blocks, column-major
-  std::vector<std::size_t> m_diagonal;                         // pool offset of block (i, i)
-  std::unordered_map<std::int64_t, std::size_t> m_off_diagonal;  // key i * n + j, i < j → pool offset
+  std::vector<double> m_pool;                 // dense blocks, column-major
+  std::vector<std::size_t> m_diagonal;        // pool offset of block (i, i)
+  std::size_t m_diagonal_size = 0;            // the diagonal blocks fill the pool's start
+  std::vector<Slot> m_slots;                  // every off-diagonal block ever stored
+  std::vector<std::vector<int>> m_row_slots;  // per block row: indices into m_slots
+  std::uint64_t m_generation = 1;               // the current assembly
+  std::size_t m_live = 0, m_previous_live = 0;  // live slots now / at the end of the previous assembly
+  bool m_grew = false;                          // a slot not live in the previous assembly is live now
+  std::uint64_t m_previous_version = 0;         // pattern_version() at the end of the previous assembly
 };
 
 }  // namespace stiffsoft

@@ -2,6 +2,16 @@
 
 namespace stiffsoft {
 
+namespace {
+/// Position in an affine block's q = (p, a₁, a₂, a₃) of the entry that multiplies weight k in
+/// component i: k = 0 is p_i, k ≥ 1 is A_{i,k−1} (row i of A is q[3 + 3i .. 3 + 3i + 2]).
+/// A soft node's block has only k = 0, where this gives i as well.
+constexpr int kDof[4][3] = {{0, 1, 2}, {3, 6, 9}, {4, 7, 10}, {5, 8, 11}};
+
+/// Number of weights of a block with `columns` DOFs: 4 for an affine body, 1 for a soft node.
+int weights(int columns) { return columns == 12 ? 4 : 1; }
+}  // namespace
+
 StencilJacobian::StencilJacobian(const Model& model, const std::array<int, 4>& vertices) {
   for (int i = 0; i < 4; ++i) {
     const int v = vertices[i];
@@ -15,31 +25,44 @@ StencilJacobian::StencilJacobian(const Model& model, const std::array<int, 4>& v
       block[s] = b;
       offset[s] = model.blocks[b].offset;
       columns[s] = model.blocks[b].size;
-      J[s].setZero();
       ++slots;
     }
-    if (node < 0)
-      J[s].middleRows<3>(3 * i) = abd::jacobian(model.mesh.x_bar.row(v).transpose());
-    else
-      J[s].block<3, 3>(3 * i, 0) = Eigen::Matrix3d::Identity();
+    slot_of[i] = s;
+    w[i] << 1.0, (node < 0 ? Eigen::Vector3d(model.mesh.x_bar.row(v).transpose()) : Eigen::Vector3d::Zero());
   }
 }
 
-void StencilJacobian::scatter_gradient(const Eigen::Matrix<double, 12, 1>& g_x,
-                                       Eigen::VectorXd& g) const {
-  for (int s = 0; s < slots; ++s) {
-    const Eigen::Matrix<double, 12, 1> g_s = J[s].transpose() * g_x;
-    g.segment(offset[s], columns[s]) += g_s.head(columns[s]);
+void StencilJacobian::scatter_gradient(const Eigen::Matrix<double, 12, 1>& g_x, Eigen::VectorXd& g) const {
+  for (int a = 0; a < 4; ++a) {
+    const int s = slot_of[a];
+    if (s < 0) continue;
+    for (int k = 0; k < weights(columns[s]); ++k)
+      for (int i = 0; i < 3; ++i) g[offset[s] + kDof[k][i]] += w[a][k] * g_x[3 * a + i];
   }
 }
 
 void StencilJacobian::scatter_hessian(const Eigen::Matrix<double, 12, 12>& H_x, BlockHessian& H) const {
+  Eigen::Matrix<double, 12, 12> out;
   for (int s = 0; s < slots; ++s) {
-    const SlotMatrix HJ = H_x * J[s];
     for (int t = 0; t < slots; ++t) {
       if (block[t] > block[s]) continue;
-      const SlotMatrix Hts = J[t].transpose() * HJ;
-      H.add(block[t], block[s], Hts.topLeftCorner(columns[t], columns[s]));
+      const int nk = weights(columns[t]), nl = weights(columns[s]);
+      out.topLeftCorner(columns[t], columns[s]).setZero();
+      // J_tᵀ H J_s = Σ over vertex pairs (a in t, b in s) of w_a w_bᵀ ⊗ H_ab, in q's order.
+      for (int a = 0; a < 4; ++a) {
+        if (slot_of[a] != t) continue;
+        for (int b = 0; b < 4; ++b) {
+          if (slot_of[b] != s) continue;
+          const Eigen::Matrix3d H_ab = H_x.block<3, 3>(3 * a, 3 * b);
+          for (int k = 0; k < nk; ++k)
+            for (int l = 0; l < nl; ++l) {
+              const double c = w[a][k] * w[b][l];
+              for (int j = 0; j < 3; ++j)
+                for (int i = 0; i < 3; ++i) out(kDof[k][i], kDof[l][j]) += c * H_ab(i, j);
+            }
+        }
+      }
+      H.add(block[t], block[s], out.topLeftCorner(columns[t], columns[s]));
     }
   }
 }

@@ -3,6 +3,10 @@
 /// over the DOF blocks of its vertices (at most four): J_s stacks J(x̄) (3×12) for the vertices
 /// of an affine body and the identity (3×3) for a soft node. Fixed bodies and nodes carry no
 /// DOFs and drop out.
+///
+/// J is never formed: a vertex's row block is w ⊗ I₃ up to the order of q's entries, with
+/// w = (1, x̄₁, x̄₂, x̄₃) on an affine body (x_i = p_i + Σ_k x̄_k A_ik) and w = (1) on a soft
+/// node, so Jᵀ H J is a sum of 3×3 blocks of H scaled by products of weights.
 
 #include <Eigen/Core>
 #include <array>
@@ -14,14 +18,12 @@ namespace stiffsoft {
 
 /// The linear map from the DOF blocks of a stencil's vertices to its packed vertex positions.
 struct StencilJacobian {
-  /// ∂x_stencil/∂q_s of one slot: 12 × 12, of which the first `columns[s]` (12 or 3) are used
-  /// (fixed size, so the products below compile to unrolled kernels).
-  using SlotMatrix = Eigen::Matrix<double, 12, 12>;
-  std::array<int, 4> block{-1, -1, -1, -1};  ///< DOF block of each slot
-  std::array<int, 4> offset{-1, -1, -1, -1}; ///< first DOF of each slot in q
-  std::array<SlotMatrix, 4> J;               ///< ∂x_stencil/∂q_slot, zero beyond its columns
-  std::array<int, 4> columns{0, 0, 0, 0};    ///< DOFs of each slot's block (12 affine, 3 soft node)
-  int slots = 0;                             ///< number of slots with DOFs
+  std::array<int, 4> block{-1, -1, -1, -1};   ///< DOF block of each slot
+  std::array<int, 4> offset{-1, -1, -1, -1};  ///< first DOF of each slot in q
+  std::array<int, 4> columns{0, 0, 0, 0};     ///< DOFs of each slot's block (12 affine, 3 soft node)
+  int slots = 0;                              ///< number of slots with DOFs
+  std::array<int, 4> slot_of{-1, -1, -1, -1};  ///< slot of each stencil vertex, −1 without DOFs
+  std::array<Eigen::Vector4d, 4> w;           ///< weights of each stencil vertex: (1, x̄) or (1, 0, 0, 0)
 
   /// Builds the map for the given stencil vertices (−1 entries unused).
   StencilJacobian(const Model& model, const std::array<int, 4>& vertices);

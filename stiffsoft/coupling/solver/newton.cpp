@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include <stiffsoft/coupling/linear_solver/forcing_term.hpp>
@@ -23,16 +24,16 @@ void update_all(const std::vector<EnergyTerm*>& terms, const Configuration& c) {
 
 /// The Newton direction p = −H⁻¹g; if the projected Hessian is numerically singular, shifts
 /// its diagonal until the factorisation succeeds.
+/// `analysed` holds the pattern_version() the solver last analysed (empty: none yet).
 bool newton_direction(const BlockHessian& H, const Eigen::VectorXd& g, LinearSolver& solver,
-                      std::vector<std::int64_t>& pattern, PhaseTimes& times, const ReducedBasis* basis,
+                      std::optional<std::uint64_t>& analysed, PhaseTimes& times, const ReducedBasis* basis,
                       Eigen::VectorXd& p) {
   ScopedTimer timer(times.solve);
   Eigen::SparseMatrix<double> A = basis ? basis->reduce_upper(H.upper()) : H.upper();
   const Eigen::VectorXd b = basis ? Eigen::VectorXd(-basis->reduce(g)) : Eigen::VectorXd(-g);
-  std::vector<std::int64_t> new_pattern = H.pattern();
-  if (new_pattern != pattern || pattern.empty()) {
+  if (analysed != H.pattern_version()) {
     solver.analyze_pattern(A);
-    pattern = std::move(new_pattern);
+    analysed = H.pattern_version();
   }
   double shift = 0;
   const double scale = A.diagonal().cwiseAbs().maxCoeff();
@@ -73,7 +74,8 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
   Eigen::MatrixX3d x = model.surface(q);
   update_all(terms, {q, x});
   double E = total_energy(terms, {q, x});
-  std::vector<std::int64_t> pattern;
+  std::optional<std::uint64_t> analysed;
+  BlockHessian H(model.blocks);  // reused: the same pattern is assembled without allocating
   Eigen::VectorXd g(q.size()), p(q.size()), q_trial(q.size());
   double eta = 0, g_norm_previous = 0;  // Eisenstat–Walker state
   std::vector<char> held(model.blocks.size(), 0);
@@ -108,13 +110,13 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
     eta = forcing_term(g_norm, g_norm_previous, eta, settings.forcing);
     g_norm_previous = g_norm;
     solver.set_relative_tolerance(eta);
-    BlockHessian H(model.blocks);
+    H.clear();
     {
       ScopedTimer timer(times.assembly);
       for (const EnergyTerm* t : terms) t->add_hessian(c, H);
       if (holds) H.decouple(held);
     }
-    const bool solved = newton_direction(H, g, solver, pattern, times, basis, p);
+    const bool solved = newton_direction(H, g, solver, analysed, times, basis, p);
     if (holds) hold(p);  // exact zeros, whatever the solver (a multigrid cycle may mix blocks)
     const LinearSolveReport& linear = solver.last_report();
     report.linear_iterations += linear.iterations;
@@ -138,7 +140,7 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
       // Same sparsity (the revision only changes existing stencils' blocks): no new analysis.
       // Should the revised solve fail, the first direction stands.
       Eigen::VectorXd p_revised(p.size());
-      const bool resolved = newton_direction(H, g, solver, pattern, times, basis, p_revised);
+      const bool resolved = newton_direction(H, g, solver, analysed, times, basis, p_revised);
       report.linear_iterations += solver.last_report().iterations;
       if (resolved) {
         if (holds) hold(p_revised);

@@ -55,11 +55,14 @@ double BarrierTerm::value(const Configuration& c) const {
 }
 
 void BarrierTerm::add_gradient(const Configuration& c, Eigen::VectorXd& g) const {
-  for (const ContactConstraint& k : m_constraints) {
-    const contact::Vector12d gx = m_kappa * k.weight *
-                                  contact::barrier_potential_gradient(k.stencil, gather(c.x, k.vertices), m_settings.dhat);
-    StencilJacobian(m_model, k.vertices).scatter_gradient(gx, g);
-  }
+  // Stencil gradients in parallel, scattered serially in stencil order (reproducible sums).
+  std::vector<contact::Vector12d> local(m_constraints.size());
+  tbb::parallel_for(size_t(0), m_constraints.size(), [&](size_t k) {
+    const ContactConstraint& s = m_constraints[k];
+    local[k] = m_kappa * s.weight * contact::barrier_potential_gradient(s.stencil, gather(c.x, s.vertices), m_settings.dhat);
+  });
+  for (size_t k = 0; k < m_constraints.size(); ++k)
+    StencilJacobian(m_model, m_constraints[k].vertices).scatter_gradient(local[k], g);
 }
 
 void BarrierTerm::add_hessian(const Configuration& c, BlockHessian& H) const {

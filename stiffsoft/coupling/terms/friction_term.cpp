@@ -32,9 +32,12 @@ double FrictionTerm::value(const Configuration& c) const {
 }
 
 void FrictionTerm::add_gradient(const Configuration& c, Eigen::VectorXd& g) const {
-  for (size_t k = 0; k < m_stencils.size(); ++k)
-    StencilJacobian(m_model, m_vertices[k])
-        .scatter_gradient(contact::friction_potential_gradient(m_stencils[k], displacement(c, k), m_mu, m_epsv_h), g);
+  // Stencil gradients in parallel, scattered serially in stencil order (reproducible sums).
+  std::vector<contact::Vector12d> local(m_stencils.size());
+  tbb::parallel_for(size_t(0), m_stencils.size(), [&](size_t k) {
+    local[k] = contact::friction_potential_gradient(m_stencils[k], displacement(c, k), m_mu, m_epsv_h);
+  });
+  for (size_t k = 0; k < m_stencils.size(); ++k) StencilJacobian(m_model, m_vertices[k]).scatter_gradient(local[k], g);
 }
 
 void FrictionTerm::add_hessian(const Configuration& c, BlockHessian& H) const {
