@@ -1,6 +1,5 @@
 #include <stiffsoft/coupling/terms/barrier_term.hpp>
 
-#include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
@@ -9,6 +8,7 @@
 
 #include <stiffsoft/coupling/ccd/ccd.hpp>
 #include <stiffsoft/coupling/model/stencil_jacobian.hpp>
+#include <stiffsoft/coupling/terms/chunked_assembly.hpp>
 
 namespace stiffsoft {
 
@@ -55,26 +55,29 @@ double BarrierTerm::value(const Configuration& c) const {
 }
 
 void BarrierTerm::add_gradient(const Configuration& c, Eigen::VectorXd& g) const {
-  // Stencil gradients in parallel, scattered serially in stencil order (reproducible sums).
-  std::vector<contact::Vector12d> local(m_constraints.size());
-  tbb::parallel_for(size_t(0), m_constraints.size(), [&](size_t k) {
-    const ContactConstraint& s = m_constraints[k];
-    local[k] = m_kappa * s.weight * contact::barrier_potential_gradient(s.stencil, gather(c.x, s.vertices), m_settings.dhat);
-  });
-  for (size_t k = 0; k < m_constraints.size(); ++k)
-    StencilJacobian(m_model, m_constraints[k].vertices).scatter_gradient(local[k], g);
+  assemble_in_chunks<contact::Vector12d>(
+      m_constraints.size(),
+      [&](size_t k, contact::Vector12d& out) {
+        const ContactConstraint& s = m_constraints[k];
+        out = m_kappa * s.weight * contact::barrier_potential_gradient(s.stencil, gather(c.x, s.vertices), m_settings.dhat);
+      },
+      [&](size_t k, const contact::Vector12d& out) {
+        StencilJacobian(m_model, m_constraints[k].vertices).scatter_gradient(out, g);
+      });
 }
 
 void BarrierTerm::add_hessian(const Configuration& c, BlockHessian& H) const {
-  // The 12×12 eigen-decompositions dominate: do them in parallel, scatter serially.
-  std::vector<contact::Matrix12d> local(m_constraints.size());
-  tbb::parallel_for(size_t(0), m_constraints.size(), [&](size_t k) {
-    local[k] = m_kappa * m_constraints[k].weight * contact::barrier_potential_hessian(m_constraints[k].stencil,
-                                                            gather(c.x, m_constraints[k].vertices),
-                                                            m_settings.dhat, true);
-  });
-  for (size_t k = 0; k < m_constraints.size(); ++k)
-    StencilJacobian(m_model, m_constraints[k].vertices).scatter_hessian(local[k], H);
+  // The 12×12 eigen-decompositions dominate: they run in parallel, the scatter serially.
+  assemble_in_chunks<contact::Matrix12d>(
+      m_constraints.size(),
+      [&](size_t k, contact::Matrix12d& out) {
+        const ContactConstraint& s = m_constraints[k];
+        out = m_kappa * s.weight *
+              contact::barrier_potential_hessian(s.stencil, gather(c.x, s.vertices), m_settings.dhat, true);
+      },
+      [&](size_t k, const contact::Matrix12d& out) {
+        StencilJacobian(m_model, m_constraints[k].vertices).scatter_hessian(out, H);
+      });
 }
 
 double BarrierTerm::max_step(const Configuration& c, const Eigen::VectorXd&, const Eigen::MatrixX3d& dx) const {

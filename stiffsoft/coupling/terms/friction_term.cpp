@@ -1,8 +1,7 @@
 #include <stiffsoft/coupling/terms/friction_term.hpp>
 
-#include <tbb/parallel_for.h>
-
 #include <stiffsoft/coupling/model/stencil_jacobian.hpp>
+#include <stiffsoft/coupling/terms/chunked_assembly.hpp>
 
 namespace stiffsoft {
 
@@ -32,21 +31,21 @@ double FrictionTerm::value(const Configuration& c) const {
 }
 
 void FrictionTerm::add_gradient(const Configuration& c, Eigen::VectorXd& g) const {
-  // Stencil gradients in parallel, scattered serially in stencil order (reproducible sums).
-  std::vector<contact::Vector12d> local(m_stencils.size());
-  tbb::parallel_for(size_t(0), m_stencils.size(), [&](size_t k) {
-    local[k] = contact::friction_potential_gradient(m_stencils[k], displacement(c, k), m_mu, m_epsv_h);
-  });
-  for (size_t k = 0; k < m_stencils.size(); ++k) StencilJacobian(m_model, m_vertices[k]).scatter_gradient(local[k], g);
+  assemble_in_chunks<contact::Vector12d>(
+      m_stencils.size(),
+      [&](size_t k, contact::Vector12d& out) {
+        out = contact::friction_potential_gradient(m_stencils[k], displacement(c, k), m_mu, m_epsv_h);
+      },
+      [&](size_t k, const contact::Vector12d& out) { StencilJacobian(m_model, m_vertices[k]).scatter_gradient(out, g); });
 }
 
 void FrictionTerm::add_hessian(const Configuration& c, BlockHessian& H) const {
-  std::vector<contact::Matrix12d> local(m_stencils.size());
-  tbb::parallel_for(size_t(0), m_stencils.size(), [&](size_t k) {
-    local[k] = contact::friction_potential_hessian(m_stencils[k], displacement(c, k), m_mu, m_epsv_h, true);
-  });
-  for (size_t k = 0; k < m_stencils.size(); ++k)
-    StencilJacobian(m_model, m_vertices[k]).scatter_hessian(local[k], H);
+  assemble_in_chunks<contact::Matrix12d>(
+      m_stencils.size(),
+      [&](size_t k, contact::Matrix12d& out) {
+        out = contact::friction_potential_hessian(m_stencils[k], displacement(c, k), m_mu, m_epsv_h, true);
+      },
+      [&](size_t k, const contact::Matrix12d& out) { StencilJacobian(m_model, m_vertices[k]).scatter_hessian(out, H); });
 }
 
 bool FrictionTerm::revise_hessian(const Configuration& c, const Eigen::VectorXd&, const Eigen::MatrixX3d& dx,
