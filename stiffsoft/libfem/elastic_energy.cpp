@@ -112,7 +112,11 @@ ElementHessian ElasticEnergy::element_hessian(int e, const Eigen::Ref<const Eige
 
 Eigen::SparseMatrix<double> ElasticEnergy::hessian(const Eigen::Ref<const Eigen::VectorXd>& x,
                                                    bool project_psd) const {
-  const std::vector<Matrix12d> local = element_hessians(x, project_psd);
+  check_size(x, "x");
+  std::vector<Matrix12d> local(num_elements());
+  for_each_element(num_elements(), [&](int e) {
+    local[e] = tet_hessian(m_elements[e], *m_material, element_positions(e, x), project_psd);
+  });
   std::vector<Eigen::Triplet<double>> triplets;
   triplets.reserve(144 * std::size_t(num_elements()));
   for (int e = 0; e < num_elements(); ++e)
@@ -124,16 +128,6 @@ Eigen::SparseMatrix<double> ElasticEnergy::hessian(const Eigen::Ref<const Eigen:
   Eigen::SparseMatrix<double> H(3 * num_nodes(), 3 * num_nodes());
   H.setFromTriplets(triplets.begin(), triplets.end());
   return H;
-}
-
-std::vector<Matrix12d> ElasticEnergy::element_hessians(const Eigen::Ref<const Eigen::VectorXd>& x,
-                                                      bool project_psd) const {
-  check_size(x, "x");
-  std::vector<Matrix12d> local(num_elements());
-  for_each_element(num_elements(), [&](int e) {
-    local[e] = tet_hessian(m_elements[e], *m_material, element_positions(e, x), project_psd);
-  });
-  return local;
 }
 
 Eigen::VectorXd ElasticEnergy::von_mises(const Eigen::Ref<const Eigen::VectorXd>& x) const {

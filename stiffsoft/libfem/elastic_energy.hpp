@@ -65,11 +65,8 @@ class ElasticEnergy {
   /// std::invalid_argument for e out of range or x of the wrong size.
   ElementHessian element_hessian(int e, const Eigen::Ref<const Eigen::VectorXd>& x, bool project_psd) const;
   /// The global Hessian, 3N × 3N, both triangles stored (N/m). A convenience for small problems
-  /// and tests; a coupled solver scatters the blocks of element_hessians itself.
+  /// and tests; a coupled solver scatters element_hessian blocks itself.
   Eigen::SparseMatrix<double> hessian(const Eigen::Ref<const Eigen::VectorXd>& x, bool project_psd) const;
-  /// Every element's 12×12 Hessian at x, computed in parallel: H_e over the nodes T.row(e), as
-  /// element_hessian gives it (projected when `project_psd`).
-  std::vector<Matrix12d> element_hessians(const Eigen::Ref<const Eigen::VectorXd>& x, bool project_psd) const;
 
   /// Von Mises stress of every element's Cauchy stress, |T| (Pa); see Material::von_mises.
   Eigen::VectorXd von_mises(const Eigen::Ref<const Eigen::VectorXd>& x) const;

@@ -80,25 +80,31 @@ std::vector<std::int64_t> BlockHessian::pattern() const {
   return keys;
 }
 
-std::vector<std::vector<int>> BlockHessian::column_slots() const {
-  std::vector<std::vector<int>> columns(m_blocks.size());
-  // Rows in ascending order, so each column's list comes out sorted by row.
+BlockHessian::ColumnSlots BlockHessian::column_slots() const {
+  ColumnSlots out;
+  out.offsets.assign(m_blocks.size() + 1, 0);
+  for (const Slot& s : m_slots)
+    if (live(s)) ++out.offsets[s.column + 1];
+  for (std::size_t j = 0; j < m_blocks.size(); ++j) out.offsets[j + 1] += out.offsets[j];
+  out.slots.resize(std::size_t(out.offsets.back()));
+  std::vector<int> next(out.offsets.begin(), out.offsets.end() - 1);
+  // Rows in ascending order, so each column's slots come out sorted by row.
   for (const std::vector<int>& row : m_row_slots)
     for (int k : row)
-      if (live(m_slots[k])) columns[m_slots[k].column].push_back(k);
-  return columns;
+      if (live(m_slots[k])) out.slots[std::size_t(next[m_slots[k].column]++)] = k;
+  return out;
 }
 
 Eigen::SparseMatrix<double> BlockHessian::upper() const {
   const int n = num_blocks();
-  const std::vector<std::vector<int>> columns = column_slots();
+  const ColumnSlots columns = column_slots();
   Eigen::SparseMatrix<double> H(m_num_dofs, m_num_dofs);
   // Filled column by column in row order: the compressed arrays are written directly.
   Eigen::SparseMatrix<double>::StorageIndex* outer = H.outerIndexPtr();
   std::size_t nnz = 0;
   for (int bj = 0; bj < n; ++bj) {
     int above = 0;
-    for (int k : columns[bj]) above += m_blocks[m_slots[k].row].size;
+    for (int k = columns.offsets[bj]; k < columns.offsets[bj + 1]; ++k) above += m_blocks[m_slots[columns.slots[k]].row].size;
     for (int c = 0; c < m_blocks[bj].size; ++c) nnz += std::size_t(above + c + 1);
   }
   H.resizeNonZeros(Eigen::Index(nnz));
@@ -111,8 +117,8 @@ Eigen::SparseMatrix<double> BlockHessian::upper() const {
     const ConstBlock diagonal = block_at(m_diagonal[bj], bj, bj);
     for (int c = 0; c < col_block.size; ++c) {
       const int col = col_block.offset + c;
-      for (int s : columns[bj]) {
-        const Slot& slot = m_slots[s];
+      for (int s = columns.offsets[bj]; s < columns.offsets[bj + 1]; ++s) {
+        const Slot& slot = m_slots[columns.slots[s]];
         const ConstBlock block = block_at(slot.at, slot.row, bj);
         const DofBlock& row_block = m_blocks[slot.row];
         for (int r = 0; r < row_block.size; ++r, ++k) {

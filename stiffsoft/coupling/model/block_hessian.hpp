@@ -66,8 +66,13 @@ class BlockHessian {
   Slot& live_slot(int row, int column);
   /// Whether a slot is part of the current matrix.
   bool live(const Slot& s) const { return s.generation == m_generation; }
-  /// The live slots of each block column, by ascending row.
-  std::vector<std::vector<int>> column_slots() const;
+  /// The live slots by block column, each column's by ascending row: column j's are
+  /// slots[offsets[j] .. offsets[j + 1]).
+  struct ColumnSlots {
+    std::vector<int> offsets, slots;
+  };
+  /// The live slots grouped by block column (a counting sort, two allocations).
+  ColumnSlots column_slots() const;
 
   std::vector<DofBlock> m_blocks;
   int m_num_dofs = 0;

@@ -1,9 +1,10 @@
 #pragma once
-/// @file Per-stencil assembly in chunks: local gradients or Hessians computed in parallel into
-/// a small buffer, then added to the global vector or matrix serially in stencil order, chunk
-/// after chunk. The sums are the same whatever the thread count (the order of addition is
-/// fixed), and the buffer stays small: one 12×12 Hessian per stencil for thousands of contacts
-/// would be megabytes of freshly mapped memory every Newton iteration.
+/// @file Assembly item by item (contact stencil, tetrahedron, affine body) in chunks: local
+/// gradients or Hessians computed in parallel into a small buffer, then added to the global
+/// vector or matrix serially in item order, chunk after chunk. The sums are the same whatever
+/// the thread count (the order of addition is fixed), and the buffer stays small: one 12×12
+/// Hessian per item for thousands of contacts or elements would be megabytes of freshly mapped
+/// memory every Newton iteration.
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

@@ -1,5 +1,6 @@
 #include <stiffsoft/coupling/terms/elasticity_term.hpp>
 
+#include <stiffsoft/coupling/terms/chunked_assembly.hpp>
 #include <stiffsoft/libfem/make_material.hpp>
 
 namespace stiffsoft {
@@ -50,21 +51,22 @@ void ElasticityTerm::add_gradient(const Configuration& c, Eigen::VectorXd& g) co
 void ElasticityTerm::add_hessian(const Configuration& c, BlockHessian& H) const {
   const SoftNodes& nodes = m_model.nodes;
   for (const SoftBody& body : m_bodies) {
-    // Element Hessians in parallel, scattered serially in element order (reproducible sums).
-    const std::vector<fem::Matrix12d> local = body.energy->element_hessians(body_positions(body, c.q), true);
-    const Eigen::MatrixX4i& T = body.energy->tets();
-    for (int e = 0; e < int(local.size()); ++e) {
-      std::array<int, 4> block;
-      for (int a = 0; a < 4; ++a) block[a] = nodes.block[body.node_begin + T(e, a)];
-      for (int a = 0; a < 4; ++a) {
-        if (block[a] < 0) continue;
-        for (int b = 0; b < 4; ++b) {
-          if (block[b] < block[a]) continue;  // each unordered pair once; add() keeps the upper triangle
-          const Eigen::Matrix3d Hab = m_scale * local[e].block<3, 3>(3 * a, 3 * b);
-          H.add(block[a], block[b], Hab);
-        }
-      }
-    }
+    const Eigen::VectorXd x = body_positions(body, c.q);
+    assemble_in_chunks<fem::ElementHessian>(
+        std::size_t(body.energy->num_elements()),
+        [&](std::size_t e, fem::ElementHessian& out) { out = body.energy->element_hessian(int(e), x, true); },
+        [&](std::size_t, const fem::ElementHessian& eh) {
+          std::array<int, 4> block;
+          for (int a = 0; a < 4; ++a) block[a] = nodes.block[body.node_begin + eh.nodes[a]];
+          for (int a = 0; a < 4; ++a) {
+            if (block[a] < 0) continue;
+            for (int b = 0; b < 4; ++b) {
+              if (block[b] < block[a]) continue;  // each unordered pair once; add() keeps the upper triangle
+              const Eigen::Matrix3d Hab = m_scale * eh.H.block<3, 3>(3 * a, 3 * b);
+              H.add(block[a], block[b], Hab);
+            }
+          }
+        });
   }
 }
 

@@ -1,9 +1,6 @@
 #include <stiffsoft/coupling/terms/orthogonality_term.hpp>
 
-#include <tbb/parallel_for.h>
-
-#include <vector>
-
+#include <stiffsoft/coupling/terms/chunked_assembly.hpp>
 #include <stiffsoft/libabd/orthogonality_potential.hpp>
 
 namespace stiffsoft {
@@ -28,12 +25,12 @@ void OrthogonalityTerm::add_gradient(const Configuration& c, Eigen::VectorXd& g)
 }
 
 void OrthogonalityTerm::add_hessian(const Configuration& c, BlockHessian& H) const {
-  // Each body's block in parallel; the blocks are disjoint, added serially.
-  std::vector<abd::Matrix12d> local(m_bodies.size());
-  tbb::parallel_for(size_t(0), m_bodies.size(), [&](size_t k) {
-    local[k] = abd::orthogonality_potential_hessian(c.q.segment<12>(m_bodies[k].dof), m_bodies[k].kappa_volume, 1.0, true);
-  });
-  for (size_t k = 0; k < m_bodies.size(); ++k) H.add(m_bodies[k].block, m_bodies[k].block, local[k]);
+  assemble_in_chunks<abd::Matrix12d>(
+      m_bodies.size(),
+      [&](std::size_t k, abd::Matrix12d& out) {
+        out = abd::orthogonality_potential_hessian(c.q.segment<12>(m_bodies[k].dof), m_bodies[k].kappa_volume, 1.0, true);
+      },
+      [&](std::size_t k, const abd::Matrix12d& out) { H.add(m_bodies[k].block, m_bodies[k].block, out); });
 }
 
 }  // namespace stiffsoft
