@@ -21,7 +21,7 @@ int run_study(const StudyOptions& options) {
 
   const int cores = std::max(1, int(std::thread::hardware_concurrency()));
   RunnerOptions runner;
-  runner.binary = std::filesystem::read_symlink("/proc/self/exe");
+  runner.binary = options.program.empty() ? std::filesystem::read_symlink("/proc/self/exe") : options.program;
   runner.runs = options.out / "runs";
   runner.jobs = options.jobs > 0 ? options.jobs : cores;
   runner.threads = std::max(1, cores / runner.jobs);

@@ -8,10 +8,11 @@ namespace stiffsoft::study {
 
 /// Options of `stiffsoft study`.
 struct StudyOptions {
-  std::filesystem::path study;  ///< the study file (.json)
-  std::filesystem::path out;    ///< output folder (DIR/runs holds the cached runs)
-  int jobs = 0;                 ///< runs at a time; 0: the number of cores
-  bool check = true;            ///< run `stiffsoft check` on every run's frames (unless the study turns it off)
+  std::filesystem::path study;    ///< the study file (.json)
+  std::filesystem::path out;      ///< output folder (DIR/runs holds the cached runs)
+  int jobs = 0;                   ///< runs at a time; 0: the number of cores
+  bool check = true;              ///< run `stiffsoft check` on every run's frames (unless the study turns it off)
+  std::filesystem::path program;  ///< the `stiffsoft` program that runs and checks; empty: this program itself
 };
 
 /// Runs a study: expands the sweep, runs what is not cached (in parallel child processes of
