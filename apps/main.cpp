@@ -15,6 +15,7 @@
 #include <stiffsoft/scene/scene_schema.hpp>
 #include "run_command.hpp"
 #include "schema_command.hpp"
+#include <stiffsoft/io/checkpoint.hpp>
 #include <stiffsoft/study/study.hpp>
 #include <stiffsoft/study/study_spec.hpp>
 
@@ -43,6 +44,9 @@ int main(int argc, char** argv) {
   run_cmd->add_option("-o,--out", run.out, "output folder")->required();
   run_cmd->add_option("--steps", run.steps, "number of steps (default: the scene's duration)")->check(CLI::PositiveNumber);
   run_cmd->add_option("--threads", run.threads, "worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  run_cmd->add_flag("--resume", run.resume, "continue the run in the output folder from its last checkpoint (same scene, same files)");
+  run_cmd->add_option("--checkpoint-every", run.checkpoint_every, "frames between checkpoints for --resume (0: none)")
+      ->check(CLI::NonNegativeNumber);
   run_cmd->add_option("--load-timeout", run.load_timeout, "seconds loading and meshing may take before the run is refused (0: no bound)")
       ->capture_default_str();
   run_cmd->add_option("--max-tets", run.limits.max_tets, "largest expected tetrahedron count of one soft body, estimated before meshing")
@@ -76,6 +80,9 @@ int main(int argc, char** argv) {
     spdlog::error("{}", e.what());
     return 2;
   } catch (const stiffsoft::SceneError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  } catch (const stiffsoft::ResumeError& e) {
     spdlog::error("{}", e.what());
     return 2;
   } catch (const std::exception& e) {

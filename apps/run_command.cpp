@@ -9,6 +9,7 @@
 
 #include <stiffsoft/coupling/linear_solver/petsc_session.hpp>
 #include <stiffsoft/coupling/solver/physics_error.hpp>
+#include <stiffsoft/io/checkpoint.hpp>
 #include <stiffsoft/io/recorder.hpp>
 #include <stiffsoft/scene/make_simulation.hpp>
 
@@ -38,12 +39,23 @@ int run_scene(const RunOptions& options) {
 
   // Under MPI every rank simulates (the linear solve is shared); rank 0 alone writes.
   std::optional<Recorder> recorder;
-  if (PetscSession::rank() == 0) recorder.emplace(options.out, scene, sim);
+  int first = 0;
+  if (options.resume) {
+    const Checkpoint checkpoint = read_checkpoint(options.out / "checkpoint.bin");
+    if (PetscSession::rank() == 0)
+      recorder.emplace(options.out, scene, sim, checkpoint, options.checkpoint_every);
+    else
+      sim.restore(checkpoint.state);
+    first = checkpoint.state.step;
+    spdlog::info("resuming at step {} (t = {:.4f} s) from {}", first, sim.time(), (options.out / "checkpoint.bin").string());
+  } else if (PetscSession::rank() == 0) {
+    recorder.emplace(options.out, scene, sim, options.checkpoint_every);
+  }
 
   StepLog log;
   Progress progress(total);
   try {
-    for (int k = 0; k < total; ++k) {
+    for (int k = first; k < total; ++k) {
       const StepStats s = sim.step();
       if (recorder) recorder->record(s, k + 1 == total);
       log.record(s, sim);
@@ -58,13 +70,13 @@ int run_scene(const RunOptions& options) {
     spdlog::error("{}", e.what());
     if (recorder)
       spdlog::error("stopped: wrote {} frames to {} (up to t = {:.4f} s); {}", recorder->frame_count(),
-                    recorder->pvd_path().string(), sim.time(), log.summary(sim.state().step));
+                    recorder->pvd_path().string(), sim.time(), log.summary(sim.state().step - first));
     return 3;
   }
   if (!recorder) return log.unconverged() ? 3 : 0;
   progress.finish();
   recorder->finish();
-  spdlog::info("wrote {} frames to {}; {}", recorder->frame_count(), recorder->pvd_path().string(), log.summary(total));
+  spdlog::info("wrote {} frames to {}; {}", recorder->frame_count(), recorder->pvd_path().string(), log.summary(total - first));
   return log.unconverged() ? 3 : 0;
 }
 

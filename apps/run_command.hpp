@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <optional>
 
+#include <stiffsoft/io/recorder.hpp>
 #include <stiffsoft/scene/element_limits.hpp>
 
 namespace stiffsoft {
@@ -16,6 +17,8 @@ struct RunOptions {
   int threads = 0;               ///< worker threads; 0: all cores
   ElementLimits limits;          ///< largest body the scene may build (--max-tets, --max-triangles)
   double load_timeout = 900;     ///< bound on loading and meshing (s, --load-timeout); ≤ 0: none
+  bool resume = false;           ///< continue the run in `out` from its checkpoint (--resume)
+  int checkpoint_every = Recorder::kCheckpointEvery;  ///< frames between checkpoints (--checkpoint-every); 0: none
 };
 
 /// Runs a scene, writing frames, stats.csv, bodies.csv and scene.resolved.json into the output

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 #include <system_error>
+#include <vector>
 
 namespace stiffsoft {
 
@@ -67,6 +68,18 @@ void write_file_atomically(const std::filesystem::path& path,
     throw std::runtime_error("cannot write '" + path.string() + "': rename from '" + tmp.string() +
                              "' failed: " + ec.message());
   }
+}
+
+int remove_stale_temporaries(const std::filesystem::path& folder) {
+  std::vector<std::filesystem::path> stale;
+  std::error_code ec;
+  for (auto it = std::filesystem::recursive_directory_iterator(folder, ec); !ec && it != std::filesystem::end(it); it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (it->is_regular_file() && name.size() > 1 && name[0] == '.' && name.find(".tmp.") != std::string::npos)
+      stale.push_back(it->path());
+  }
+  for (const std::filesystem::path& file : stale) std::filesystem::remove(file, ec);
+  return int(stale.size());
 }
 
 }  // namespace stiffsoft

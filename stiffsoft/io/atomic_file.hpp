@@ -21,4 +21,8 @@ namespace stiffsoft {
 void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(std::ostream&)>& write);
 
+/// Removes the temporaries (`.<name>.tmp.<pid>.<n>`) that a killed writer left in `folder` and
+/// below it; returns how many. For a run resumed in its output folder.
+int remove_stale_temporaries(const std::filesystem::path& folder);
+
 }  // namespace stiffsoft

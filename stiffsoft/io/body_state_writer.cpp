@@ -2,10 +2,13 @@
 
 #include <charconv>
 #include <cmath>
+#include <fstream>
 #include <iostream>
 #include <limits>
+#include <stdexcept>
 
 #include <stiffsoft/io/atomic_file.hpp>
+#include <stiffsoft/io/csv_rows.hpp>
 
 namespace stiffsoft {
 
@@ -103,12 +106,29 @@ void BodyStateWriter::add_state(int step, const Simulation& sim) {
   dirty_ = true;
 }
 
+int BodyStateWriter::reload(int last_step) {
+  CsvRows rows = csv_rows_through_step(file_, body_state_columns(), last_step);
+  rows_ = std::move(rows.text);
+  on_disk_ = false;  // the next flush rewrites the file with exactly these rows
+  dirty_ = true;
+  return rows.last_step;
+}
+
 void BodyStateWriter::flush() {
-  write_file_atomically(file_, [&](std::ostream& out) {
-    const auto& columns = body_state_columns();
-    for (std::size_t i = 0; i < columns.size(); ++i) out << (i > 0 ? "," : "") << columns[i];
-    out << '\n' << rows_;
-  });
+  if (!on_disk_) {
+    write_file_atomically(file_, [&](std::ostream& out) {
+      const auto& columns = body_state_columns();
+      for (std::size_t i = 0; i < columns.size(); ++i) out << (i > 0 ? "," : "") << columns[i];
+      out << '\n' << rows_;
+    });
+    on_disk_ = true;
+  } else if (!rows_.empty()) {
+    std::ofstream out(file_, std::ios::binary | std::ios::app);
+    out.write(rows_.data(), std::streamsize(rows_.size()));
+    out.close();
+    if (!out) throw std::runtime_error("cannot append to " + file_.string());
+  }
+  rows_.clear();
   dirty_ = false;
 }
 

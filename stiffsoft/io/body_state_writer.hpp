@@ -19,8 +19,10 @@ namespace stiffsoft {
 ///   w and A are written as nan, kinetic energy Σ ½ mᵢ |vᵢ|² (J).
 /// - fc, ff: the sum of the contact (barrier) and friction forces on the body's surface
 ///   vertices (N).
-/// Rows are kept in memory; the file is rewritten atomically (stiffsoft/io/atomic_file.hpp) on flush()
-/// and at destruction, so it is always whole.
+/// Rows are kept in memory until flush() (and destruction): the first flush writes the file
+/// atomically (stiffsoft/io/atomic_file.hpp), later ones append the new rows in one write, so a
+/// long run's file is never rewritten. A process killed during an append can leave a partial
+/// last line; a resumed run (reload()) keeps whole rows only.
 class BodyStateWriter {
  public:
   /// `file`: the .csv to (re)write; its folder must exist. Nothing is written before flush().
@@ -32,16 +34,19 @@ class BodyStateWriter {
 
   /// Appends one row per body of `sim` for step number `step` (0: the initial state).
   void add_state(int step, const Simulation& sim);
-  /// Rewrites the file with the header and every row so far; throws std::runtime_error
-  /// naming the file on I/O failure.
+  /// Puts every row so far on disk (header and rows the first time, then appending); throws
+  /// std::runtime_error naming the file on I/O failure.
   void flush();
-  /// Bytes of rows held in memory (callers flush large files less often).
-  std::size_t size() const { return rows_.size(); }
+  /// Continues a resumed run: takes the rows of the file on disk up to step `last_step` as the
+  /// rows so far. Returns the step of the last one (−1: none). Throws ResumeError naming the
+  /// file when it cannot be read or has another header.
+  int reload(int last_step);
 
  private:
   std::filesystem::path file_;  ///< the .csv
-  std::string rows_;            ///< every row so far, '\n'-terminated
-  bool dirty_ = true;           ///< rows not yet on disk
+  std::string rows_;            ///< rows not yet on disk, '\n'-terminated
+  bool on_disk_ = false;        ///< the file holds the header and the rows flushed so far
+  bool dirty_ = true;           ///< rows (or the header) not yet on disk
 };
 
 /// The column names of bodies.csv, in order.

@@ -257,6 +257,11 @@ void FrameWriter::write(double time, const std::vector<BodyFrame>& bodies) {
 
 int FrameWriter::frame_count() const { return static_cast<int>(frames_.size()); }
 
+void FrameWriter::continue_from(std::vector<std::pair<double, std::string>> frames) {
+  frames_ = std::move(frames);
+  write_pvd();
+}
+
 std::filesystem::path FrameWriter::pvd_path() const { return out_dir_ / (scene_name_ + ".pvd"); }
 
 void FrameWriter::write_pvd() const { write_pvd_collection(pvd_path(), frames_); }

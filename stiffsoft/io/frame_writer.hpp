@@ -56,6 +56,13 @@ class FrameWriter {
   /// Number of frames written so far.
   int frame_count() const;
 
+  /// The .pvd's entries so far: (time in s, .vtm file relative to the output folder).
+  const std::vector<std::pair<double, std::string>>& frames() const { return frames_; }
+
+  /// Continues a resumed run whose .pvd listed `frames`: takes them as the frames so far and
+  /// rewrites the .pvd with exactly them (later frame files are overwritten as they come again).
+  void continue_from(std::vector<std::pair<double, std::string>> frames);
+
   /// Path of the .pvd: `out_dir/<scene_name>.pvd`.
   std::filesystem::path pvd_path() const;
 

@@ -114,6 +114,11 @@ JointFrameWriter::JointFrameWriter(std::filesystem::path out_dir, std::string sc
   write_pvd_collection(pvd_path(), m_frames);
 }
 
+void JointFrameWriter::continue_from(std::vector<std::pair<double, std::string>> frames) {
+  m_frames = std::move(frames);
+  write_pvd_collection(pvd_path(), m_frames);
+}
+
 std::filesystem::path JointFrameWriter::pvd_path() const { return m_out_dir / (m_stem + ".pvd"); }
 
 void JointFrameWriter::write(double time, const std::vector<JointFrameEntry>& joints) {

@@ -45,6 +45,11 @@ class JointFrameWriter {
   void write(double time, const std::vector<JointFrameEntry>& joints);
   /// Number of frames written so far.
   int frame_count() const { return int(m_frames.size()); }
+  /// The .pvd's entries so far: (time in s, file relative to out_dir).
+  const std::vector<std::pair<double, std::string>>& frames() const { return m_frames; }
+  /// Continues a resumed run whose .pvd listed `frames`: takes them as the frames so far and
+  /// rewrites the .pvd with exactly them.
+  void continue_from(std::vector<std::pair<double, std::string>> frames);
   /// `out_dir/<scene_name>_joints.pvd`.
   std::filesystem::path pvd_path() const;
 

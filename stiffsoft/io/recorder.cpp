@@ -21,8 +21,15 @@ const std::filesystem::path& prepared_folder(const std::filesystem::path& out, c
   return out;
 }
 
-/// bodies.csv is flushed at every frame only while it is smaller than this (bytes of rows).
-constexpr std::size_t kBodiesFlushLimit = std::size_t(8) << 20;
+/// The scene's fingerprint, checked against the checkpoint's before anything in `out` is
+/// touched: a ResumeError when the scene changed.
+std::uint64_t same_scene(const SceneDescription& scene, const Checkpoint& checkpoint, const std::filesystem::path& out) {
+  const std::uint64_t fingerprint = scene_fingerprint(scene);
+  if (fingerprint != checkpoint.scene_fingerprint)
+    throw ResumeError(out.string() + ": the scene (its settings or a mesh file) changed since the checkpoint; " +
+                      "run it again without --resume, into a new folder");
+  return fingerprint;
+}
 
 }  // namespace
 
@@ -32,8 +39,12 @@ const std::vector<std::string>& Recorder::joint_columns() {
   return columns;
 }
 
-Recorder::Recorder(const std::filesystem::path& out, const SceneDescription& scene, const Simulation& sim)
+Recorder::Recorder(const std::filesystem::path& out, const SceneDescription& scene, const Simulation& sim,
+                   int checkpoint_every)
     : m_sim(sim),
+      m_out(out),
+      m_scene_fingerprint(scene_fingerprint(scene)),
+      m_checkpoint_every(checkpoint_every),
       m_x0(sim.surface()),
       m_frame_dt(scene.output.frame_dt.value()),
       m_next_frame(sim.time() + m_frame_dt),
@@ -47,18 +58,54 @@ Recorder::Recorder(const std::filesystem::path& out, const SceneDescription& sce
   m_frames.write(sim.time(), body_frames(sim, m_x0));
   if (m_joint_frames) m_joint_frames->write(sim.time(), joint_frame_entries(sim));
   m_bodies.add_state(0, sim);
+  m_stats.flush();
+  if (m_joints) m_joints->flush();
+  m_bodies.flush();
+  if (m_checkpoint_every > 0) write_checkpoint();
+}
+
+Recorder::Recorder(const std::filesystem::path& out, const SceneDescription& scene, Simulation& sim,
+                   const Checkpoint& checkpoint, int checkpoint_every)
+    : m_sim(sim),
+      m_out(out),
+      m_scene_fingerprint(same_scene(scene, checkpoint, out)),
+      m_checkpoint_every(checkpoint_every),
+      m_x0(sim.surface()),
+      m_frame_dt(scene.output.frame_dt.value()),
+      m_next_frame(checkpoint.next_frame),
+      m_frames(prepared_folder(out, scene), scene.name),
+      m_stats(out / "stats.csv", step_stats_column_names()),
+      m_bodies(out / "bodies.csv") {
+  if (sim.time() != 0) throw std::invalid_argument("Recorder: a run is resumed into a simulation at t = 0");
+  remove_stale_temporaries(out);  // a killed writer's half-written files
+  const int step = checkpoint.state.step;
+  const auto reached = [&](int last, const std::filesystem::path& file) {
+    if (last != step)
+      throw ResumeError(file.string() + ": holds steps up to " + std::to_string(last) + ", the checkpoint is at step " +
+                        std::to_string(step) + " (damaged output folder)");
+  };
+  reached(m_stats.reload(step), out / "stats.csv");
+  reached(m_bodies.reload(step), out / "bodies.csv");
+  if (!scene.joints.empty()) {
+    m_joints.emplace(out / "joints.csv", joint_columns());
+    m_joints->reload(step);
+    m_joint_frames.emplace(out, scene.name);
+    m_joint_frames->continue_from(checkpoint.joint_frames);
+  }
+  m_frames.continue_from(checkpoint.frames);
+  sim.restore(checkpoint.state);
 }
 
 void Recorder::record(const StepStats& s, bool last) {
   m_stats.add_row(step_stats_row(s));
   m_bodies.add_state(s.step, m_sim);
   if (m_sim.time() >= m_next_frame - 1e-9 * m_frame_dt || last) {
-    write_frame(s.step);
-    m_next_frame += m_frame_dt;
+    m_next_frame += m_frame_dt;  // before the frame: its checkpoint holds the next one's time
+    write_frame(s.step, last);
   }
 }
 
-void Recorder::write_frame(int step) {
+void Recorder::write_frame(int step, bool last) {
   m_frames.write(m_sim.time(), body_frames(m_sim, m_x0));
   m_stats.flush();
   if (m_joints) {
@@ -71,7 +118,18 @@ void Recorder::write_frame(int step) {
     m_joints->flush();
     m_joint_frames->write(m_sim.time(), joints);
   }
-  if (m_bodies.size() < kBodiesFlushLimit) m_bodies.flush();  // large ones: at the end only
+  m_bodies.flush();
+  if (m_checkpoint_every > 0 && (last || m_frames.frame_count() % m_checkpoint_every == 0)) write_checkpoint();
+}
+
+void Recorder::write_checkpoint() const {
+  Checkpoint c;
+  c.scene_fingerprint = m_scene_fingerprint;
+  c.state = m_sim.state();
+  c.next_frame = m_next_frame;
+  c.frames = m_frames.frames();
+  if (m_joint_frames) c.joint_frames = m_joint_frames->frames();
+  stiffsoft::write_checkpoint(m_out / "checkpoint.bin", c);
 }
 
 void Recorder::finish() {

@@ -8,11 +8,13 @@
 ///     recorder.finish();
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 
 #include <stiffsoft/coupling/solver/simulation.hpp>
 #include <stiffsoft/io/body_state_writer.hpp>
+#include <stiffsoft/io/checkpoint.hpp>
 #include <stiffsoft/io/frame_writer.hpp>
 #include <stiffsoft/io/joint_frame_writer.hpp>
 #include <stiffsoft/io/stats_writer.hpp>
@@ -27,15 +29,29 @@ namespace stiffsoft {
 /// - `bodies.csv`: every body's state at t = 0 and after every step (io/body_state_writer.hpp);
 /// - with joints, `joints.csv` (per frame: each joint's anchor and force on body a) and
 ///   `NAME_joints.pvd` + `frames/NAME_joints_NNNNNN.vtp` (io/joint_frame_writer.hpp);
-/// - `scene.resolved.json`: the scene with every default filled in.
-/// Files are flushed at every frame (bodies.csv only while under 8 MiB; then at finish()).
+/// - `scene.resolved.json`: the scene with every default filled in;
+/// - `checkpoint.bin` every `checkpoint_every` frames and with the last one (io/checkpoint.hpp):
+///   what a resumed run (`stiffsoft run --resume`) continues from.
+/// Files are flushed at every frame, before the checkpoint, so that a checkpoint never lists
+/// more than the files hold.
 class Recorder {
  public:
-  /// Creates `out`, writes `scene.resolved.json` and the frame at the simulation's present
-  /// state; std::invalid_argument when `out` exists and is not a folder. `scene` is the
-  /// resolved scene `sim` was made from (SceneSimulation::scene); `sim` must outlive the
-  /// recorder.
-  Recorder(const std::filesystem::path& out, const SceneDescription& scene, const Simulation& sim);
+  /// Frames between two checkpoints unless told otherwise (`stiffsoft run --checkpoint-every`).
+  static constexpr int kCheckpointEvery = 1;
+
+  /// Creates `out`, writes `scene.resolved.json`, the frame at the simulation's present state
+  /// and a checkpoint; std::invalid_argument when `out` exists and is not a folder. `scene` is
+  /// the resolved scene `sim` was made from (SceneSimulation::scene); `sim` must outlive the
+  /// recorder. `checkpoint_every`: frames between checkpoints, 0: none.
+  Recorder(const std::filesystem::path& out, const SceneDescription& scene, const Simulation& sim,
+           int checkpoint_every = kCheckpointEvery);
+  /// Continues the run recorded in `out` from `checkpoint` (read_checkpoint(out /
+  /// "checkpoint.bin")): `sim`, the scene's simulation at t = 0, is restored to the checkpoint's
+  /// state; the .pvd files list exactly the checkpoint's frames again and the CSV files keep
+  /// their rows up to its step. Throws ResumeError when the scene differs from the checkpoint's
+  /// (settings or mesh files) or a CSV file does not reach the checkpoint's step.
+  Recorder(const std::filesystem::path& out, const SceneDescription& scene, Simulation& sim, const Checkpoint& checkpoint,
+           int checkpoint_every = kCheckpointEvery);
   Recorder(const Recorder&) = delete;
   Recorder& operator=(const Recorder&) = delete;
 
@@ -53,9 +69,13 @@ class Recorder {
   static const std::vector<std::string>& joint_columns();
 
  private:
-  void write_frame(int step);
+  void write_frame(int step, bool last);
+  void write_checkpoint() const;
 
   const Simulation& m_sim;
+  std::filesystem::path m_out;
+  std::uint64_t m_scene_fingerprint;
+  int m_checkpoint_every;
   Eigen::MatrixX3d m_x0;  ///< the surface at the first frame, for displacements
   double m_frame_dt;
   double m_next_frame;

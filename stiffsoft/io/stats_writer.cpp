@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include <stiffsoft/io/atomic_file.hpp>
+#include <stiffsoft/io/csv_rows.hpp>
 
 namespace stiffsoft {
 
@@ -54,6 +55,14 @@ void StatsWriter::flush() {
     out << '\n' << rows_;
   });
   dirty_ = false;
+}
+
+int StatsWriter::reload(int last_step) {
+  CsvRows rows = csv_rows_through_step(file_, columns_, last_step);
+  rows_ = std::move(rows.text);
+  row_count_ = rows.count;
+  dirty_ = true;
+  return rows.last_step;
 }
 
 std::size_t StatsWriter::row_count() const { return row_count_; }

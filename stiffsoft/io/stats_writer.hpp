@@ -33,6 +33,11 @@ class StatsWriter {
   /// the file on I/O failure; the previous file content then stays intact.
   void flush();
 
+  /// Continues a resumed run: takes the rows of the file on disk up to step `last_step` (the
+  /// first column) as the rows so far. Returns the step of the last one (−1: none). Throws
+  /// ResumeError naming the file when it cannot be read or has another header.
+  int reload(int last_step);
+
   /// Number of rows added so far.
   std::size_t row_count() const;
 
