@@ -94,8 +94,8 @@ int affine_body(const Model& model, const py::object& body) {
 }
 
 /// Rows [begin, end) of `x`, or all of it when `body` is None (`rows` picks the body's range).
-template <class Range>
-Eigen::MatrixX3d rows_of(const Eigen::MatrixX3d& x, const Model& model, const py::object& body, Range range) {
+Eigen::MatrixX3d rows_of(const Eigen::MatrixX3d& x, const Model& model, const py::object& body,
+                         std::pair<int, int> (*range)(const BodyModel&)) {
   if (body.is_none()) return x;
   const auto [begin, end] = range(model.bodies[std::size_t(body_index(model, body))]);
   return x.middleRows(begin, end - begin);
@@ -104,6 +104,17 @@ Eigen::MatrixX3d rows_of(const Eigen::MatrixX3d& x, const Model& model, const py
 /// A body's node range and its surface-vertex range.
 std::pair<int, int> node_range(const BodyModel& b) { return {b.node_begin, b.node_end}; }
 std::pair<int, int> vertex_range(const BodyModel& b) { return {b.vertex_begin, b.vertex_end}; }
+
+/// A method `name(body=None)`: `field` (a Simulation accessor giving a row per surface vertex
+/// or soft node) for all of them, or one body's rows (`range` picks them).
+void def_rows(py::class_<PySimulation>& cls, const char* name, Eigen::MatrixX3d (Simulation::*field)() const,
+              std::pair<int, int> (*range)(const BodyModel&), const char* doc) {
+  cls.def(name, [field, range](PySimulation& s, const py::object& body) {
+        const Simulation& sim = idle(s);
+        return rows_of((sim.*field)(), sim.model(), body, range);
+      },
+      py::arg("body") = py::none(), doc);
+}
 
 /// A read-only NumPy view of `data` that keeps `owner` alive.
 template <class T>
@@ -274,13 +285,14 @@ void bind_simulation(py::module_& m) {
         return take_step(it.s, it.recorder, it.remaining == 0);
       });
 
-  py::class_<PySimulation>(m, "Simulation",
+  py::class_<PySimulation> simulation(m, "Simulation",
       "A scene advanced in time. Simulation(scene) takes a scene file path, a Scene or a dict with\n"
       "the keys of a scene file; it meshes soft bodies, resolves relative defaults and checks\n"
       "everything (SceneError naming the JSON path). Steps run with the GIL released; Ctrl-C\n"
       "raises KeyboardInterrupt after the current step.\n\n"
       "Affine body b: 12 DOFs at bodies[b].dof in q, (p, a1, a2, a3), p the centre of mass (m), ai\n"
-      "the rows of A. Soft nodes: 3 DOFs each. Arrays are NumPy, (n, 3) per vertex or node.")
+      "the rows of A. Soft nodes: 3 DOFs each. Arrays are NumPy, (n, 3) per vertex or node.");
+  simulation
       .def(py::init([](const SceneDescription& scene, const std::string& label) {
              return std::make_unique<PySimulation>(prepare_scene(scene, label));
            }),
@@ -329,36 +341,6 @@ void bind_simulation(py::module_& m) {
              s.simulation.restore(state);
            },
            py::arg("state"), "Continues from a State of a Simulation of the same scene (ValueError if its sizes differ).")
-      .def("surface", [](PySimulation& s, const py::object& body) {
-             const Simulation& sim = idle(s);
-             return rows_of(sim.surface(), sim.model(), body, vertex_range);
-           },
-           py::arg("body") = py::none(), "Surface vertices in world coordinates, (|V|, 3) in m; a body's rows with `body`.")
-      .def("surface_velocity", [](PySimulation& s, const py::object& body) {
-             const Simulation& sim = idle(s);
-             return rows_of(sim.surface_velocity(), sim.model(), body, vertex_range);
-           },
-           py::arg("body") = py::none(), "Surface vertex velocities, (|V|, 3) in m/s.")
-      .def("contact_forces", [](PySimulation& s, const py::object& body) {
-             const Simulation& sim = idle(s);
-             return rows_of(sim.contact_forces(), sim.model(), body, vertex_range);
-           },
-           py::arg("body") = py::none(), "Barrier force on each surface vertex at the end of the last step, (|V|, 3) in N.")
-      .def("friction_forces", [](PySimulation& s, const py::object& body) {
-             const Simulation& sim = idle(s);
-             return rows_of(sim.friction_forces(), sim.model(), body, vertex_range);
-           },
-           py::arg("body") = py::none(), "Friction force on each surface vertex over the last step, (|V|, 3) in N.")
-      .def("node_positions", [](PySimulation& s, const py::object& body) {
-             const Simulation& sim = idle(s);
-             return rows_of(sim.node_positions(), sim.model(), body, node_range);
-           },
-           py::arg("body") = py::none(), "Soft nodes' positions, (|N|, 3) in m; a soft body's rows with `body`.")
-      .def("node_velocities", [](PySimulation& s, const py::object& body) {
-             const Simulation& sim = idle(s);
-             return rows_of(sim.node_velocities(), sim.model(), body, node_range);
-           },
-           py::arg("body") = py::none(), "Soft nodes' velocities, (|N|, 3) in m/s (zero for fixed nodes).")
       .def("von_mises", [](PySimulation& s) { return idle(s).von_mises(); },
            "Von Mises stress of every soft tetrahedron (Pa), in the order of `tets`.")
       .def("body_pose", [](PySimulation& s, const py::object& body) {
@@ -436,6 +418,18 @@ void bind_simulation(py::module_& m) {
         return "Simulation(scene='" + s.scene.name + "', " + std::to_string(s.scene.bodies.size()) + " bodies, t=" +
                py::repr(py::float_(idle(s).time())).cast<std::string>() + ")";
       });
+  def_rows(simulation, "surface", &Simulation::surface, vertex_range,
+           "Surface vertices in world coordinates, (|V|, 3) in m; a body's rows with `body`.");
+  def_rows(simulation, "surface_velocity", &Simulation::surface_velocity, vertex_range,
+           "Surface vertex velocities, (|V|, 3) in m/s.");
+  def_rows(simulation, "contact_forces", &Simulation::contact_forces, vertex_range,
+           "Barrier force on each surface vertex at the end of the last step, (|V|, 3) in N.");
+  def_rows(simulation, "friction_forces", &Simulation::friction_forces, vertex_range,
+           "Friction force on each surface vertex over the last step, (|V|, 3) in N.");
+  def_rows(simulation, "node_positions", &Simulation::node_positions, node_range,
+           "Soft nodes' positions, (|N|, 3) in m; a soft body's rows with `body`.");
+  def_rows(simulation, "node_velocities", &Simulation::node_velocities, node_range,
+           "Soft nodes' velocities, (|N|, 3) in m/s (zero for fixed nodes).");
 }
 
 }  // namespace stiffsoft::python

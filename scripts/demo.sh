@@ -10,3 +10,7 @@ sudo=""
 $sudo cmake --install build/release --component python   # `import stiffsoft` (docs/python.md)
 build/release/apps/stiffsoft run scenes/default.json -o out
 build/release/apps/stiffsoft check out/default.pvd
+echo
+echo "Done. The frames are in out/: open out/default.pvd in ParaView (File > Open, Apply; colour by"
+echo "velocity or contact_force); out/stats.csv has one row per step. From Python (docs/python.md):"
+echo "  python3 examples/python/ball_on_boxes.py    # a soft ball on affine boxes: out/python/*.png and .pvd"
