@@ -5,6 +5,8 @@
 #include "bindings.hpp"
 #include "keyword_init.hpp"
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <fstream>
 
@@ -122,7 +124,9 @@ std::filesystem::path mesh_file(const py::object& vertices, const py::object& tr
   const std::filesystem::path dir = folder.empty() ? tet_mesh_cache_folder() / "arrays" : folder;
   std::filesystem::create_directories(dir);
   const bool surface = !triangles.is_none();
-  const std::filesystem::path scratch = dir / (surface ? ".scratch.obj" : ".scratch.msh");
+  // A scratch name of this process, so that processes sharing the folder never read each other's.
+  const std::filesystem::path scratch =
+      dir / (".scratch." + std::to_string(::getpid()) + (surface ? ".obj" : ".msh"));
   const std::filesystem::path written = write_mesh(scratch, vertices, triangles, tets);
   std::ifstream in(written, std::ios::binary);
   const std::string bytes{std::istreambuf_iterator<char>(in), {}};

@@ -1,7 +1,7 @@
 """Output from Python: the same files as `stiffsoft run`, studies, and the examples."""
 import csv
 import filecmp
-import os
+import json
 import subprocess
 import sys
 
@@ -46,19 +46,17 @@ def test_recorder_as_context_and_iterator(tmp_path, repo):
     assert len(stats_without_timings(tmp_path / "out" / "stats.csv")) == 5
 
 
-def test_run_study_from_python(tmp_path, repo, program):
+def test_run_study_from_python(tmp_path, repo, program, monkeypatch):
     """A two-value sweep of an existing study, run as `stiffsoft study` runs it."""
     study = tmp_path / "study.json"
-    text = (repo / "studies" / "be_vs_bdf2.json").read_text()
-    import json
-    spec = json.loads(text)
+    spec = json.loads((repo / "studies" / "be_vs_bdf2.json").read_text())
     spec["scene"] = str(repo / "studies" / "scenes" / "spinning_box.json")
     spec["sweep"][0]["values"] = [0.02, 0.01]
     spec["quantities"] = spec["quantities"][:1]
     spec["quantities"][0]["at"] = 0.2
     spec["quantities"][0].pop("expected_order")
     study.write_text(json.dumps(spec))
-    os.environ["STIFFSOFT_PROGRAM"] = program
+    monkeypatch.setenv("STIFFSOFT_PROGRAM", program)
     code = stiffsoft.run_study(study, tmp_path / "out", jobs=2)
     assert code in (0, 1)  # 1: the plots could not be drawn; the CSV is written either way
     rows = list(csv.DictReader(open(tmp_path / "out" / "study.csv")))

@@ -5,6 +5,7 @@ import signal
 import subprocess
 import sys
 import textwrap
+import time
 
 import numpy as np
 import pytest
@@ -176,7 +177,6 @@ def test_ctrl_c_stops_after_the_current_step(tmp_path, repo):
     """)
     child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True)
     assert child.stdout.readline().strip() == "started"
-    import time
     time.sleep(1.0)
     child.send_signal(signal.SIGINT)
     out, _ = child.communicate(timeout=60)
