@@ -33,9 +33,10 @@ Candidates SweptCandidates::for_ccd(const Model& model) const {
   };
   Candidates out;
   for (const auto& [v, f] : m_all.vertex_face)
-    if (overlap([&](int) { return v; }, 1, [&](int i) { return mesh.F(f, i); }, 3)) out.vertex_face.push_back({v, f});
+    if (overlap([v = v](int) { return v; }, 1, [&, f = f](int i) { return mesh.F(f, i); }, 3))
+      out.vertex_face.push_back({v, f});
   for (const auto& [ea, eb] : m_all.edge_edge)
-    if (overlap([&](int i) { return mesh.E(ea, i); }, 2, [&](int i) { return mesh.E(eb, i); }, 2))
+    if (overlap([&, ea = ea](int i) { return mesh.E(ea, i); }, 2, [&, eb = eb](int i) { return mesh.E(eb, i); }, 2))
       out.edge_edge.push_back({ea, eb});
   return out;
 }
