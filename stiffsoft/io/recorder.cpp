@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include <stiffsoft/io/atomic_file.hpp>
+#include <stiffsoft/io/paraview_script.hpp>
 #include <stiffsoft/io/simulation_frame.hpp>
 #include <stiffsoft/scene/scene_loader.hpp>
 
@@ -55,7 +56,9 @@ Recorder::Recorder(const std::filesystem::path& out, const SceneDescription& sce
     m_joints.emplace(out / "joints.csv", joint_columns());
     m_joint_frames.emplace(out, scene.name);
   }
-  m_frames.write(sim.time(), body_frames(sim, m_x0));
+  const std::vector<BodyFrame> first = body_frames(sim, m_x0);
+  write_paraview_script(paraview_script_path(out, scene.name), paraview_scene(scene.name, first, scene.gravity));
+  m_frames.write(sim.time(), first);
   if (m_joint_frames) m_joint_frames->write(sim.time(), joint_frame_entries(sim));
   m_bodies.add_state(0, sim);
   m_stats.flush();
@@ -93,6 +96,9 @@ Recorder::Recorder(const std::filesystem::path& out, const SceneDescription& sce
     m_joint_frames->continue_from(checkpoint.joint_frames);
   }
   m_frames.continue_from(checkpoint.frames);
+  // An older run's folder gets the script too; the camera is the first frame's, as in a fresh run.
+  write_paraview_script(paraview_script_path(out, scene.name),
+                        paraview_scene(scene.name, body_frames(sim, m_x0), scene.gravity));
   sim.restore(checkpoint.state);
 }
 

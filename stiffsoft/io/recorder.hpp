@@ -30,6 +30,8 @@ namespace stiffsoft {
 /// - with joints, `joints.csv` (per frame: each joint's anchor and force on body a) and
 ///   `NAME_joints.pvd` + `frames/NAME_joints_NNNNNN.vtp` (io/joint_frame_writer.hpp);
 /// - `scene.resolved.json`: the scene with every default filled in;
+/// - `NAME.paraview.py`: a ParaView script that opens the series coloured, with a camera
+///   (io/paraview_script.hpp);
 /// - `checkpoint.bin` every `checkpoint_every` frames and with the last one (io/checkpoint.hpp):
 ///   what a resumed run (`stiffsoft run --resume`) continues from.
 /// Files are flushed at every frame, before the checkpoint, so that a checkpoint never lists
