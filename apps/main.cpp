@@ -1,5 +1,5 @@
-/// @file The `stiffsoft` command: run a scene, check written frames, run a convergence study, print the
-/// scene schema, print versions.
+/// @file The `stiffsoft` command: run a scene, check written frames, render them to pictures, run a
+/// convergence study, print the scene schema, print versions.
 
 #include <CLI/CLI.hpp>
 #include <gmsh.h>
@@ -13,6 +13,7 @@
 #include "check_command.hpp"
 #include "apps/cli/petsc_command_line.hpp"
 #include <stiffsoft/scene/scene_schema.hpp>
+#include "render_command.hpp"
 #include "run_command.hpp"
 #include "schema_command.hpp"
 #include <stiffsoft/io/checkpoint.hpp>
@@ -58,6 +59,26 @@ int main(int argc, char** argv) {
   CLI::App* check_cmd = app.add_subcommand("check", "exact intersection check of every frame of a .pvd series");
   check_cmd->add_option("pvd", pvd, "DIR/NAME.pvd written by `stiffsoft run`")->required();
 
+  stiffsoft::RenderOptions render;
+  std::string size = std::to_string(render.width) + "x" + std::to_string(render.height);
+  CLI::App* render_cmd = app.add_subcommand(
+      "render", "render the frames of a .pvd series to PNG (off screen; starts Xvfb without a display), a contact sheet, an .mp4");
+  render_cmd->add_option("pvd", render.pvd, "DIR/NAME.pvd written by `stiffsoft run`")->required();
+  render_cmd->add_option("-o,--out", render.out, "folder of the pictures (NAME_NNNNNN.png, NAME_sheet.png)")->required();
+  render_cmd->add_option("--every", render.every, "render every N-th frame (and the last)")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  render_cmd->add_option("--size", size, "picture size, WIDTHxHEIGHT pixels")
+      ->check(CLI::Validator([](std::string& s) -> std::string {
+        int w = 0, h = 0;
+        char x = 0;
+        return std::sscanf(s.c_str(), "%d%c%d", &w, &x, &h) == 3 && x == 'x' && w >= 16 && h >= 16 && w <= 8192 && h <= 8192
+                   ? std::string() : std::string("expected WIDTHxHEIGHT, e.g. 960x540 (16 to 8192 pixels each)");
+      }, "WxH"))->capture_default_str();
+  render_cmd->add_option("--sheet-frames", render.sheet_frames, "frames on the contact sheet NAME_sheet.png")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  render_cmd->add_flag("--mp4", render.movie, "also write NAME.mp4 with ffmpeg (skipped with a message without it)");
+  render_cmd->add_option("--fps", render.fps, "frames per second of the movie")->check(CLI::PositiveNumber)->capture_default_str();
+
   stiffsoft::study::StudyOptions study;
   CLI::App* study_cmd = app.add_subcommand("study", "run a convergence study: sweep a scene's settings, errors against a reference, orders, plots");
   study_cmd->add_option("study", study.study, "study file (.json, see studies/)")->required();
@@ -74,6 +95,10 @@ int main(int argc, char** argv) {
   try {
     if (*run_cmd) return stiffsoft::run_scene(run);
     if (*check_cmd) return stiffsoft::check_frames(pvd);
+    if (*render_cmd) {
+      std::sscanf(size.c_str(), "%dx%d", &render.width, &render.height);
+      return stiffsoft::render_frames(render);
+    }
     if (*study_cmd) return stiffsoft::study::run_study(study);
     if (*schema_cmd) return stiffsoft::print_schema(markdown, std::cout);
   } catch (const stiffsoft::study::StudyError& e) {

@@ -5,7 +5,11 @@ find_package(nlohmann_json REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(spdlog REQUIRED)
 find_package(CGAL REQUIRED)
-find_package(VTK REQUIRED COMPONENTS IOXML CommonCore CommonDataModel)
+# The library reads and writes XML files only; rendering (RenderingCore onwards) is for the
+# `stiffsoft render` command alone (apps/render/).
+find_package(VTK REQUIRED COMPONENTS IOXML CommonCore CommonDataModel
+  RenderingCore RenderingOpenGL2 RenderingFreeType RenderingAnnotation InteractionStyle
+  FiltersGeometry FiltersSources FiltersCore ImagingCore IOImage)
 find_package(MPI REQUIRED COMPONENTS C CXX)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(PETSC REQUIRED IMPORTED_TARGET PETSc)

@@ -6,7 +6,7 @@ function(stiffsoft_tests name)
   endif()
   add_executable(${name}_tests ${sources})
   target_link_libraries(${name}_tests PRIVATE ${ARGN} stiffsoft_test_support GTest::gtest_main)
-  if(name STREQUAL "apps")
+  if(name STREQUAL "apps" OR name STREQUAL "render")
     add_dependencies(${name}_tests stiffsoft)  # its tests run the binary
   endif()
   target_compile_definitions(${name}_tests PRIVATE

@@ -1,0 +1,32 @@
+#pragma once
+/// @file An X display to render on. Debian's VTK 9.1 renders through X11 (GLX), also off
+/// screen, so a machine without a display (a server, CI, a container) needs a virtual one:
+/// Xvfb with Mesa's software OpenGL (llvmpipe), both installed by scripts/setup.sh.
+
+#include <sys/types.h>
+
+#include <string>
+
+namespace stiffsoft {
+
+/// Makes sure $DISPLAY names a display while it lives: the one already set, or a private Xvfb
+/// started on the first free display number from :90 up and stopped (SIGTERM) when this object
+/// goes. Throws std::runtime_error with what to install when there is no display and no Xvfb.
+class XDisplay {
+ public:
+  XDisplay();
+  ~XDisplay();
+  XDisplay(const XDisplay&) = delete;
+  XDisplay& operator=(const XDisplay&) = delete;
+
+  /// True when this object started an Xvfb.
+  bool started() const { return m_pid > 0; }
+  /// The display in use, e.g. ":0" or ":90".
+  const std::string& name() const { return m_name; }
+
+ private:
+  pid_t m_pid = -1;
+  std::string m_name;
+};
+
+}  // namespace stiffsoft

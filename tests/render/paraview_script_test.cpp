@@ -1,0 +1,56 @@
+/// @file The ParaView script beside every run's .pvd (stiffsoft/io/paraview_script.hpp) runs in
+/// ParaView's own pvbatch 5.11 and draws the run coloured: affine bodies blue, soft bodies
+/// yellow to red. pvbatch comes from $STIFFSOFT_PVBATCH, the PATH, or build/paraview-aside
+/// (scripts/paraview_aside.sh); without one the test is skipped and says why.
+
+#include <gtest/gtest.h>
+
+#include "picture_checks.hpp"
+#include "apps/scene_helpers.hpp"
+
+using namespace stiffsoft::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+bool on_path(const std::string& name) { return std::system(("command -v " + name + " > /dev/null 2>&1").c_str()) == 0; }
+
+/// The pvbatch to test with, or "".
+std::string find_pvbatch() {
+  if (const char* given = std::getenv("STIFFSOFT_PVBATCH"); given && *given) return given;
+  if (on_path("pvbatch")) return "pvbatch";
+  const fs::path aside = fs::path(STIFFSOFT_SOURCE_DIR) / "build/paraview-aside/pvbatch";
+  return fs::exists(aside) ? aside.string() : std::string();
+}
+
+}  // namespace
+
+TEST(ParaViewScript, OpensTheRunColouredInPvbatch) {
+  const std::string pvbatch = find_pvbatch();
+  if (pvbatch.empty())
+    GTEST_SKIP() << "no pvbatch: Debian's python3-paraview conflicts with python3-vtk9, which libvtk9-dev needs; "
+                    "`bash scripts/paraview_aside.sh` unpacks ParaView 5.11 into build/paraview-aside for this test";
+  const bool display = std::getenv("DISPLAY") && *std::getenv("DISPLAY");
+  if (!display && !on_path("xvfb-run")) GTEST_SKIP() << "no X display and no xvfb-run for pvbatch (apt-get install xvfb xauth)";
+
+  const fs::path out = fresh_folder("stiffsoft_paraview");
+  const fs::path scene = fs::path(STIFFSOFT_SOURCE_DIR) / "scenes/default.json";
+  ASSERT_EQ(run_stiffsoft("run " + scene.string() + " -o " + out.string() + " --steps 20", out / "run.log"), 0)
+      << read_text(out / "run.log");
+  const fs::path script = out / "default.paraview.py";
+  ASSERT_TRUE(fs::exists(script));
+  const fs::path png = out / "last.png";
+  const std::string command = std::string(display ? "" : "xvfb-run -a ") + pvbatch + " " + script.string() +
+                              " --screenshot " + png.string() + " > " + (out / "pvbatch.log").string() + " 2>&1";
+  EXPECT_EQ(std::system(command.c_str()), 0) << read_text(out / "pvbatch.log");
+  const std::string log = read_text(out / "pvbatch.log");
+  EXPECT_EQ(log.find("Traceback"), std::string::npos) << log;
+  ASSERT_TRUE(fs::exists(png)) << log;
+  const PictureSummary s = summarize_picture(png);
+  EXPECT_EQ(s.width, 960);
+  EXPECT_EQ(s.height, 540);
+  EXPECT_GT(s.colours, 100u) << "one flat colour";
+  EXPECT_GT(s.bluish, 1000u) << "no affine body in its speed colours";
+  EXPECT_GT(s.warm, 500u) << "no soft body in its stress colours";
+  fs::remove_all(out);
+}
