@@ -59,6 +59,7 @@ constexpr int kDefaultSteps = 40;
 /// times there (run + check).
 const std::map<std::string, int> kStepOverrides{
     {"default", 60},
+    {"ramp_and_boxes", 60},
     {"box_stack", 60},
     {"soft_ball_on_boxes", 60},
     {"slider_spring_rope", 60},
