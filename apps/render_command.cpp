@@ -60,14 +60,22 @@ int render_frames(const RenderOptions& options) {
   for (const auto& entry : std::filesystem::directory_iterator(options.out))
     if (std::regex_match(entry.path().filename().string(), earlier)) std::filesystem::remove(entry.path());
 
+  // One pass over the frames for the colour ranges and the box the camera frames.
   ColourScales scales;
-  for (int k : frames) scales.extend(read_frame_blocks(series[k].file));
-  const SceneView view = scene_view(frame_bounds(read_frame_blocks(series.front().file)), run_gravity(options.pvd));
+  std::vector<BodyBounds> bounds;
+  for (int k : frames) {
+    const auto frame = read_frame_blocks(series[k].file);
+    scales.extend(frame);
+    for (const BodyBounds& b : frame_bounds(frame)) bounds.push_back(b);
+  }
+  const auto first = read_frame_blocks(series.front().file);
+  const SceneView view = scene_view(run_gravity(options.pvd));
 
   const XDisplay display;
   if (display.started())
     spdlog::info("no X display ($DISPLAY unset): rendering under a private Xvfb on {} (stopped when done)", display.name());
-  FrameRenderer renderer(options.width, options.height, view, scales);
+  FrameRenderer renderer(options.width, options.height, view, framed_box(bounds, view), scales,
+                         frame_walls(first, view.up));
   std::vector<std::filesystem::path> pictures;
   const auto start = std::chrono::steady_clock::now();
   auto last_report = start;

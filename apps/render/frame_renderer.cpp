@@ -5,6 +5,8 @@
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
+#include <vtkCompositeDataSet.h>
+#include <vtkInformation.h>
 #include <vtkDataObjectTreeIterator.h>
 #include <vtkDoubleArray.h>
 #include <vtkGeometryFilter.h>
@@ -36,12 +38,24 @@ namespace {
 /// spread a body's weight over many vertices; those arrows would be dots).
 constexpr double kSmallestArrow = 0.02;
 
-/// Every leaf block of a frame with its name.
+/// Every leaf block of a frame with its name (the block's name in the .vtm, the body's name).
 template <class Visit>
 void for_each_block(vtkMultiBlockDataSet* frame, Visit visit) {
   auto it = vtkSmartPointer<vtkDataObjectTreeIterator>::Take(frame->NewTreeIterator());
   for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
-    if (auto* block = vtkDataSet::SafeDownCast(it->GetCurrentDataObject())) visit(block);
+    if (auto* block = vtkDataSet::SafeDownCast(it->GetCurrentDataObject())) {
+      const char* name = it->GetCurrentMetaData()->Has(vtkCompositeDataSet::NAME())
+                             ? it->GetCurrentMetaData()->Get(vtkCompositeDataSet::NAME())
+                             : "";
+      visit(block, std::string(name ? name : ""));
+    }
+}
+
+/// The bounds of one block.
+BodyBounds block_bounds(vtkDataSet* block) {
+  double b[6];
+  block->GetBounds(b);
+  return {block_model(block), Eigen::AlignedBox3d(Eigen::Vector3d(b[0], b[2], b[4]), Eigen::Vector3d(b[1], b[3], b[5]))};
 }
 
 /// A body's surface as an actor: scenery grey, soft by von Mises (cells), affine by speed (points).
@@ -100,7 +114,7 @@ vtkSmartPointer<vtkActor> arrows_actor(vtkMultiBlockDataSet* frame, double top, 
   auto forces = vtkSmartPointer<vtkDoubleArray>::New();
   forces->SetName("contact_force");
   forces->SetNumberOfComponents(3);
-  for_each_block(frame, [&](vtkDataSet* block) {
+  for_each_block(frame, [&](vtkDataSet* block, const std::string&) {
     const std::string model = block_model(block);
     if (model != "affine" && model != "soft") return;
     vtkDataArray* f = block->GetPointData()->GetArray("contact_force");
@@ -173,19 +187,25 @@ vtkSmartPointer<vtkMultiBlockDataSet> read_frame_blocks(const std::filesystem::p
 
 std::vector<BodyBounds> frame_bounds(vtkMultiBlockDataSet* frame) {
   std::vector<BodyBounds> bounds;
-  for_each_block(frame, [&](vtkDataSet* block) {
-    if (block->GetNumberOfPoints() == 0) return;
-    double b[6];
-    block->GetBounds(b);
-    bounds.push_back({block_model(block), Eigen::AlignedBox3d(Eigen::Vector3d(b[0], b[2], b[4]),
-                                                              Eigen::Vector3d(b[1], b[3], b[5]))});
+  for_each_block(frame, [&](vtkDataSet* block, const std::string&) {
+    if (block->GetNumberOfPoints() > 0) bounds.push_back(block_bounds(block));
   });
   return bounds;
 }
 
-FrameRenderer::FrameRenderer(int width, int height, const SceneView& view, const ColourScales& scales)
-    : m_view(view),
+std::set<std::string> frame_walls(vtkMultiBlockDataSet* frame, const Eigen::Vector3d& up) {
+  std::set<std::string> walls;
+  for_each_block(frame, [&](vtkDataSet* block, const std::string& name) {
+    if (block->GetNumberOfPoints() > 0 && is_wall(block_bounds(block), up)) walls.insert(name);
+  });
+  return walls;
+}
+
+FrameRenderer::FrameRenderer(int width, int height, const SceneView& view, const Eigen::AlignedBox3d& framed,
+                             const ColourScales& scales, std::set<std::string> walls)
+    : m_arrow_length(view.arrow_fraction * framed.diagonal().norm()),
       m_scales(scales),
+      m_walls(std::move(walls)),
       m_window(vtkSmartPointer<vtkRenderWindow>::New()),
       m_bodies(vtkSmartPointer<vtkRenderer>::New()),
       m_arrows(vtkSmartPointer<vtkRenderer>::New()) {
@@ -196,6 +216,8 @@ FrameRenderer::FrameRenderer(int width, int height, const SceneView& view, const
   m_bodies->SetLayer(0);
   m_bodies->SetBackground(1, 1, 1);
   m_bodies->SetUseFXAA(true);
+  m_bodies->SetUseDepthPeeling(true);  // translucent walls in front of opaque bodies, sorted
+  m_window->SetAlphaBitPlanes(1);
   m_arrows->SetLayer(1);  // a higher layer clears depth: the arrows are drawn over the bodies
   m_arrows->InteractiveOff();
   // Key, fill and back lights: a horizontal ground seen at a grazing angle is not left dark.
@@ -205,8 +227,9 @@ FrameRenderer::FrameRenderer(int width, int height, const SceneView& view, const
   m_window->AddRenderer(m_bodies);
   m_window->AddRenderer(m_arrows);
   vtkCamera* camera = m_bodies->GetActiveCamera();
-  camera->SetFocalPoint(view.focal.data());
-  camera->SetPosition(view.position.data());
+  const Eigen::Vector3d focal = framed.center(), eye = eye_position(framed, view);
+  camera->SetFocalPoint(focal.data());
+  camera->SetPosition(eye.data());
   camera->SetViewUp(view.up.data());
   camera->SetViewAngle(view.view_angle_deg);
   m_arrows->SetActiveCamera(camera);
@@ -218,13 +241,15 @@ void FrameRenderer::render(vtkMultiBlockDataSet* frame, double time, const std::
   const auto stress = colour_map(stress_colours(), m_scales.stress_top());
   const auto speed = colour_map(speed_colours(), m_scales.speed_top());
   bool soft = false, affine = false;
-  for_each_block(frame, [&](vtkDataSet* block) {
+  for_each_block(frame, [&](vtkDataSet* block, const std::string& name) {
     const std::string model = block_model(block);
     soft = soft || model == "soft";
     affine = affine || model == "affine";
-    m_bodies->AddActor(body_actor(block, model, stress, speed));
+    const auto actor = body_actor(block, model, stress, speed);
+    if (m_walls.count(name)) actor->GetProperty()->SetOpacity(kWallOpacity);
+    m_bodies->AddActor(actor);
   });
-  if (auto arrows = arrows_actor(frame, m_scales.contact_force_top(), m_view.arrow_length)) m_arrows->AddActor(arrows);
+  if (auto arrows = arrows_actor(frame, m_scales.contact_force_top(), m_arrow_length)) m_arrows->AddActor(arrows);
   const int height = m_window->GetSize()[1];
   if (affine) m_bodies->AddActor2D(colour_bar(speed, "affine bodies: speed (m/s)", 0.02, height));
   if (soft) m_bodies->AddActor2D(colour_bar(stress, "soft bodies: von Mises stress (Pa)", 0.64, height));

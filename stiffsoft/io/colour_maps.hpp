@@ -32,6 +32,8 @@ inline const std::vector<Rgb>& speed_colours() {
 
 /// Fixed and kinematic bodies.
 constexpr Rgb kSceneryColour{0.80, 0.80, 0.78};
+/// Opacity of fixed and kinematic walls (io/scene_view.hpp, is_wall()).
+constexpr double kWallOpacity = 0.3;
 /// Contact-force arrows.
 constexpr Rgb kArrowColour{0.85, 0.10, 0.10};
 

@@ -28,16 +28,22 @@ PVD = os.path.join(HERE, @PVD_JSON@)
 SOFT = @SOFT@
 AFFINE = @AFFINE@
 SCENERY = @SCENERY@
-FOCAL = @FOCAL@
-POSITION = @POSITION@
+WALLS = @WALLS@  # drawn translucent: the bodies behind them show
+# The camera (stiffsoft/io/scene_view.hpp): it looks along DIRECTION at the box the moving bodies
+# reach over all frames (grown by ROOM on each side), from where that box's sphere fills
+# VIEW_ANGLE, DOLLY times closer; the longest arrow is ARROW_FRACTION of the box's diagonal.
 UP = @UP@
+DIRECTION = @DIRECTION@
 VIEW_ANGLE = @VIEW_ANGLE@
-ARROW_LENGTH = @ARROW_LENGTH@  # m: the longest contact-force arrow
+DOLLY = @DOLLY@
+ROOM = @ROOM@
+ARROW_FRACTION = @ARROW_FRACTION@
 STRESS_COLOURS = @STRESS_COLOURS@
 SPEED_COLOURS = @SPEED_COLOURS@
 SCENERY_COLOUR = @SCENERY_COLOUR@
 ARROW_COLOUR = @ARROW_COLOUR@
 RANGE_QUANTILE = @RANGE_QUANTILE@
+WALL_OPACITY = @WALL_OPACITY@
 BLACK = [0.0, 0.0, 0.0]
 
 
@@ -54,6 +60,21 @@ def frame_tops(source, array, cells, times):
         a = info.GetArray(array)
         tops.append(a.GetRange(-1)[1] if a is not None else 0.0)
     return tops
+
+
+def framed_box(source, times):
+    """The box the moving bodies reach over every frame, grown by ROOM on each side."""
+    lo, hi = [math.inf] * 3, [-math.inf] * 3
+    for t in times:
+        source.UpdatePipeline(t)
+        b = source.GetDataInformation().GetBounds()
+        for i in range(3):
+            if b[2 * i] <= b[2 * i + 1]:
+                lo[i], hi[i] = min(lo[i], b[2 * i]), max(hi[i], b[2 * i + 1])
+    if lo[0] > hi[0]:
+        lo, hi = [0.0] * 3, [0.0] * 3
+    room = ROOM * (max(h - l for l, h in zip(lo, hi)) + 1e-9)
+    return [l - room for l in lo], [h + room for h in hi]
 
 
 def range_top(tops):
@@ -98,6 +119,12 @@ if SCENERY:
     d.ColorArrayName = ["POINTS", ""]
     d.AmbientColor = d.DiffuseColor = SCENERY_COLOUR
 
+if WALLS:
+    d = Show(blocks(reader, WALLS, "walls"), view)
+    d.ColorArrayName = ["POINTS", ""]
+    d.AmbientColor = d.DiffuseColor = SCENERY_COLOUR
+    d.Opacity = WALL_OPACITY
+
 if AFFINE:
     affine = Calculator(registrationName="affine bodies: speed", Input=blocks(reader, AFFINE, "affine bodies"))
     affine.ResultArrayName = "speed"
@@ -115,13 +142,15 @@ if SOFT:
                "soft bodies: von Mises stress (Pa)", 0.64)
 
 moving = blocks(reader, SOFT + AFFINE, "moving bodies") if SOFT + AFFINE else None
+lo, hi = framed_box(moving or reader, times)
+diagonal = math.dist(lo, hi)
 force = max(frame_tops(moving, "contact_force", False, times)) if moving else 0.0
 if force > 0:
     arrows = Glyph(registrationName="contact forces", Input=moving, GlyphType="Arrow")
     arrows.OrientationArray = ["POINTS", "contact_force"]
     arrows.ScaleArray = ["POINTS", "contact_force"]
     arrows.VectorScaleMode = "Scale by Magnitude"
-    arrows.ScaleFactor = ARROW_LENGTH / force
+    arrows.ScaleFactor = ARROW_FRACTION * diagonal / force
     arrows.GlyphMode = "All Points"
     d = Show(arrows, view)
     d.ColorArrayName = ["POINTS", ""]
@@ -134,8 +163,10 @@ d.Color = BLACK
 d.FontSize = 20
 d.WindowLocation = "Lower Left Corner"
 
-view.CameraFocalPoint = FOCAL
-view.CameraPosition = POSITION
+focal = [0.5 * (l + h) for l, h in zip(lo, hi)]
+distance = 0.5 * diagonal / math.sin(math.radians(0.5 * VIEW_ANGLE)) / DOLLY
+view.CameraFocalPoint = focal
+view.CameraPosition = [f + distance * d for f, d in zip(focal, DIRECTION)]
 view.CameraViewUp = UP
 view.CameraViewAngle = VIEW_ANGLE
 animation = GetAnimationScene()
@@ -168,12 +199,19 @@ ParaViewScene paraview_scene(const std::string& name, const std::vector<BodyFram
   scene.pvd_name = name + ".pvd";
   std::vector<BodyBounds> bounds;
   for (const BodyFrame& b : bodies) {
-    (b.model == "soft" ? scene.soft : b.model == "affine" ? scene.affine : scene.scenery).push_back(b.name);
     BodyBounds box{b.model, {}};
     for (Eigen::Index i = 0; i < b.x.rows(); ++i) box.box.extend(Eigen::Vector3d(b.x.row(i).transpose()));
     bounds.push_back(box);
   }
-  scene.view = scene_view(bounds, gravity);
+  scene.view = scene_view(gravity);
+  for (std::size_t k = 0; k < bodies.size(); ++k) {
+    const std::string& model = bodies[k].model;
+    (model == "soft"                   ? scene.soft
+     : model == "affine"               ? scene.affine
+     : is_wall(bounds[k], scene.view.up) ? scene.walls
+                                       : scene.scenery)
+        .push_back(bodies[k].name);
+  }
   return scene;
 }
 
@@ -191,11 +229,14 @@ std::string paraview_script(const ParaViewScene& scene) {
   replace(text, "@SOFT@", nlohmann::json(scene.soft).dump());
   replace(text, "@AFFINE@", nlohmann::json(scene.affine).dump());
   replace(text, "@SCENERY@", nlohmann::json(scene.scenery).dump());
-  replace(text, "@FOCAL@", vector_literal(scene.view.focal));
-  replace(text, "@POSITION@", vector_literal(scene.view.position));
+  replace(text, "@WALLS@", nlohmann::json(scene.walls).dump());
+  replace(text, "@WALL_OPACITY@", nlohmann::json(kWallOpacity).dump());
   replace(text, "@UP@", vector_literal(scene.view.up));
+  replace(text, "@DIRECTION@", vector_literal(scene.view.direction));
   replace(text, "@VIEW_ANGLE@", nlohmann::json(scene.view.view_angle_deg).dump());
-  replace(text, "@ARROW_LENGTH@", nlohmann::json(scene.view.arrow_length).dump());
+  replace(text, "@DOLLY@", nlohmann::json(scene.view.dolly).dump());
+  replace(text, "@ROOM@", nlohmann::json(scene.view.room).dump());
+  replace(text, "@ARROW_FRACTION@", nlohmann::json(scene.view.arrow_fraction).dump());
   replace(text, "@STRESS_COLOURS@", colours_literal(stress_colours()));
   replace(text, "@SPEED_COLOURS@", colours_literal(speed_colours()));
   replace(text, "@SCENERY_COLOUR@", nlohmann::json(kSceneryColour).dump());

@@ -22,12 +22,14 @@ struct ParaViewScene {
   std::string pvd_name;                ///< the series' file name, beside the script (NAME.pvd)
   std::vector<std::string> soft;       ///< block names of the soft bodies
   std::vector<std::string> affine;     ///< block names of the affine bodies
-  std::vector<std::string> scenery;    ///< block names of the fixed and kinematic bodies
-  SceneView view;                      ///< the camera
+  std::vector<std::string> scenery;    ///< block names of the fixed and kinematic bodies but walls
+  std::vector<std::string> walls;      ///< block names of the fixed and kinematic walls (is_wall()), translucent
+  SceneView view;                      ///< the camera rule (the script fits it to the frames)
 };
 
 /// The script's content for a run named `name` (its series is `name`.pvd) whose first frame is
-/// `bodies`, under `gravity` (m/s²): the bodies sorted by model, the camera of scene_view().
+/// `bodies`, under `gravity` (m/s²): the bodies sorted by model (walls by is_wall() in that
+/// frame), the view of scene_view().
 ParaViewScene paraview_scene(const std::string& name, const std::vector<BodyFrame>& bodies,
                              const Eigen::Vector3d& gravity);
 

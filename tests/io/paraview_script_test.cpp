@@ -1,5 +1,5 @@
 /// @file The ParaView script's text (stiffsoft/io/paraview_script.hpp): bodies sorted by model
-/// into Python lists, the camera of scene_view(), the colour maps of colour_maps.hpp. That it
+/// into Python lists, the view of scene_view(), the colour maps of colour_maps.hpp. That it
 /// runs in ParaView is tested with pvbatch in tests/apps/paraview_script_test.cpp.
 
 #include <gtest/gtest.h>
@@ -26,6 +26,7 @@ TEST(ParaViewScript, SortsBodiesByModelAndFindsThePvdBesideItself) {
   EXPECT_EQ(scene.soft, std::vector<std::string>{"ball"});
   EXPECT_EQ(scene.affine, std::vector<std::string>{"box \"a\""});
   EXPECT_EQ(scene.scenery, (std::vector<std::string>{"ground", "piston"}));
+  EXPECT_TRUE(scene.walls.empty());
   const std::string text = paraview_script(scene);
   EXPECT_NE(text.find("PVD = os.path.join(HERE, \"run.pvd\")"), std::string::npos);
   EXPECT_NE(text.find("SOFT = [\"ball\"]"), std::string::npos);
