@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
 # Installs, with apt, the Debian packages stiffsoft needs that are not installed yet.
 # Idempotent: a machine that has them all runs no apt command at all. Extra package names given as
-# arguments are installed too (scripts/fuzz.sh adds clang's).
+# arguments are installed too (scripts/fuzz.sh adds clang's). Xvfb and Mesa's software OpenGL are
+# for `stiffsoft render` on a machine without a display (Debian's VTK renders through X11).
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libsuitesparse-dev petsc-dev libgmsh-dev libcgal-dev libvtk9-dev
   libtbb-dev nlohmann-json3-dev libcli11-dev libspdlog-dev googletest libgtest-dev
   python3-matplotlib python3-numpy python3-dev python3-pytest pybind11-dev mypy
+  xvfb xauth libgl1-mesa-dri
   "$@"
 )
 missing=()
