@@ -20,9 +20,9 @@ stage() {
   printf '\n== [%s] %s  (%d min %02d s so far)\n' "$1" "$2" $(((now - start) / 60)) $(((now - start) % 60))
 }
 
-stage "1/5" "Debian packages (scripts/setup.sh; about 3 min on a fresh Debian 12)"
+stage "1/5" "Debian packages (scripts/setup.sh; on a fresh Debian 12 a few hundred packages, minutes)"
 bash scripts/setup.sh
-stage "2/5" "building the library and the stiffsoft program (about 9 min cold on 2 cores; [done/total] counts the steps)"
+stage "2/5" "building the library and the stiffsoft program (131 steps cold, the longest stage; [done/total] counts them)"
 bash scripts/build.sh stiffsoft
 stiffsoft=build/release/apps/stiffsoft
 out=out/default
