@@ -11,6 +11,8 @@
 
 #include <stiffsoft/meshing/gmsh_model.hpp>
 #include <stiffsoft/meshing/gmsh_session.hpp>
+#include <stiffsoft/meshing/isolated_call.hpp>
+#include <stiffsoft/meshing/tet_mesh_binary.hpp>
 
 namespace stiffsoft {
 
@@ -26,15 +28,32 @@ TetMesh read_msh(const std::filesystem::path& file, bool verbose) {
     if (line.find_first_not_of(" \t\r") == std::string::npos || line.rfind("$MeshFormat", 0) != 0)
       throw std::runtime_error(what + ": not a gmsh .msh file (expected '$MeshFormat' on the first line)");
   }
-  TetMesh mesh;
-  run_gmsh(what, verbose, [&] {
-    gmsh::open(file.string());
-    // gmsh reports some syntax errors in the log without throwing.
-    if (const std::string errors = gmsh_logged_errors(); !errors.empty())
-      throw std::runtime_error(what + ": gmsh: " + errors);
-    mesh = tet_mesh_from_gmsh_model(what);
-  });
-  return mesh;
+  // gmsh 4.8 crashes on some malformed files (found by fuzzing): read in a child process, which
+  // hands the mesh back in the mesh cache's binary format.
+  static std::atomic<unsigned long> counter{0};
+  const std::filesystem::path scratch =
+      std::filesystem::temp_directory_path() /
+      ("stiffsoft-read-msh-" + std::to_string(::getpid()) + "-" + std::to_string(counter.fetch_add(1)) + ".tetmesh");
+  std::error_code ignored;
+  try {
+    run_isolated(what, "gmsh's .msh reader", [&] {
+      TetMesh mesh;
+      run_gmsh(what, verbose, [&] {
+        gmsh::open(file.string());
+        // gmsh reports some syntax errors in the log without throwing.
+        if (const std::string errors = gmsh_logged_errors(); !errors.empty())
+          throw std::runtime_error(what + ": gmsh: " + errors);
+        mesh = tet_mesh_from_gmsh_model(what);
+      });
+      write_tet_mesh_binary(scratch, mesh);
+    });
+    TetMesh mesh = read_tet_mesh_binary(scratch);
+    std::filesystem::remove(scratch, ignored);
+    return mesh;
+  } catch (...) {
+    std::filesystem::remove(scratch, ignored);
+    throw;
+  }
 }
 
 void write_msh(const std::filesystem::path& file, const TetMesh& mesh, bool verbose) {

@@ -12,10 +12,12 @@ namespace stiffsoft {
 /// negatively oriented tetrahedra are reoriented; every physical group (points, curves, surfaces,
 /// volumes) becomes a node set by its name ("physical_<dim>_<tag>" when unnamed), holding the
 /// group's nodes that the tetrahedra use. Other elements (triangles, lines, points) are ignored.
+/// gmsh reads the file in a child process (run_isolated()), so that a file that crashes gmsh's
+/// reader is an error like any other malformed file.
 /// @param verbose print gmsh's messages
 /// @throws std::runtime_error naming the file when it cannot be opened, does not start with
 /// `$MeshFormat`, gmsh fails to read it, it holds no tetrahedra or non-tetrahedral volume elements,
-/// or the mesh fails check_tet_mesh()
+/// or the mesh fails check_tet_mesh(), and when gmsh crashes reading it
 TetMesh read_msh(const std::filesystem::path& file, bool verbose = false);
 
 /// Writes `mesh` as an ASCII MSH 4.1 file that read_msh() reads back to the same mesh (positions
