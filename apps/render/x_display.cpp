@@ -1,14 +1,16 @@
 #include "x_display.hpp"
 
+#include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
-#include <thread>
 
 #include "program_path.hpp"
 
@@ -21,6 +23,27 @@ constexpr int kFirstDisplay = 90;
 constexpr int kLastDisplay = 160;
 /// How long Xvfb may take to open its socket.
 constexpr auto kStartTimeout = std::chrono::seconds(20);
+
+/// True when Xvfb wrote its display number and the newline after it to `fd` within
+/// kStartTimeout (the pipe must stay open until both are written: Xvfb writes them apart and
+/// dies if the second write fails); false when it closed the pipe first (it exited) or took
+/// too long.
+bool wait_for_display_number(int fd) {
+  const auto deadline = std::chrono::steady_clock::now() + kStartTimeout;
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) return false;
+    pollfd watch{fd, POLLIN, 0};
+    const int polled = ::poll(&watch, 1, static_cast<int>(left.count()));
+    if (polled < 0 && errno == EINTR) continue;
+    if (polled <= 0) return false;
+    char c = 0;
+    const ssize_t got = ::read(fd, &c, 1);
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0) return false;
+    if (c == '\n') return true;
+  }
+}
 
 }  // namespace
 
@@ -37,34 +60,38 @@ XDisplay::XDisplay() {
   for (int n = kFirstDisplay; n <= kLastDisplay; ++n) {
     std::string name = ":";  // (not ":" + …: GCC 12 warns a false -Wrestrict there)
     name += std::to_string(n);
-    const std::filesystem::path socket = "/tmp/.X11-unix/X" + std::to_string(n);
-    if (std::filesystem::exists("/tmp/.X" + std::to_string(n) + "-lock") || std::filesystem::exists(socket)) continue;
+    if (std::filesystem::exists("/tmp/.X" + std::to_string(n) + "-lock")) continue;
+    // Xvfb writes the display number to -displayfd once it accepts connections, and only the
+    // Xvfb that holds the display's lock gets that far: one that lost the number to another
+    // process (a parallel test, another render) exits and closes the pipe instead. Watching
+    // the socket appear cannot tell the two apart.
+    int ready[2];
+    if (::pipe(ready) != 0) throw std::runtime_error("cannot start Xvfb: pipe failed");
     const pid_t pid = ::fork();
     if (pid < 0) throw std::runtime_error("cannot start Xvfb: fork failed");
     if (pid == 0) {
-      // The child: Xvfb, quiet.
+      // The child: Xvfb, quiet, and stopped with us even when we are killed or interrupted.
+      ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+      ::close(ready[0]);
       const std::string null = "/dev/null";
       std::freopen(null.c_str(), "w", stdout);
       std::freopen(null.c_str(), "w", stderr);
-      ::execl(xvfb->c_str(), "Xvfb", name.c_str(), "-screen", "0", "1920x1080x24", "-nolisten", "tcp", nullptr);
+      const std::string fd = std::to_string(ready[1]);
+      ::execl(xvfb->c_str(), "Xvfb", name.c_str(), "-displayfd", fd.c_str(), "-screen", "0", "1920x1080x24",
+              "-nolisten", "tcp", nullptr);
       ::_exit(127);
     }
-    const auto deadline = std::chrono::steady_clock::now() + kStartTimeout;
-    while (std::chrono::steady_clock::now() < deadline) {
-      int status = 0;
-      if (::waitpid(pid, &status, WNOHANG) == pid) break;  // it lost the race for this number: next
-      if (std::filesystem::exists(socket)) {
-        m_pid = pid;
-        m_name = name;
-        ::setenv("DISPLAY", name.c_str(), 1);
-        return;
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    ::close(ready[1]);
+    const bool serving = wait_for_display_number(ready[0]);
+    ::close(ready[0]);
+    if (serving) {
+      m_pid = pid;
+      m_name = name;
+      ::setenv("DISPLAY", name.c_str(), 1);
+      return;
     }
-    if (::waitpid(pid, nullptr, WNOHANG) == 0) {  // still running but no socket: give up on it
-      ::kill(pid, SIGTERM);
-      ::waitpid(pid, nullptr, 0);
-    }
+    ::kill(pid, SIGTERM);  // lost the number, or hung: next
+    ::waitpid(pid, nullptr, 0);
   }
   throw std::runtime_error("could not start Xvfb on any display from :" + std::to_string(kFirstDisplay) + " to :" +
                            std::to_string(kLastDisplay));
