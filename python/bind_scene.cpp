@@ -157,6 +157,7 @@ void bind_scene(py::module_& m) {
   bind_enum<Integrator>(m, "Integrator", "Time integrator: backward_euler (order 1) or bdf2 (order 2).");
   bind_enum<PrimitiveShape::Type>(m, "ShapeType", "A primitive shape: box, sphere, cylinder, torus or plane.");
   bind_enum<JointKind>(m, "JointKind", "A joint: ball, hinge, prismatic, distance, bounded_distance or cone_twist (docs/joints.md).");
+  bind_enum<contact::BarrierHessian>(m, "BarrierHessian", "Newton's Hessian of a contact's barrier: projected or gauss_newton.");
   bind_enum<DirichletDescription::Select>(m, "Select", "How Dirichlet nodes are chosen: box, half_space or node_set.");
 
   py::class_<PrimitiveShape> shape(m, "Shape",
@@ -297,6 +298,8 @@ void bind_scene(py::module_& m) {
       .def_readwrite("linear", &SolverDescription::linear, "the linear solver ('auto', 'cholmod', 'petsc', 'petsc:KSP[:PC]')")
       .def_readwrite("krylov_rtol_max", &SolverDescription::krylov_rtol_max, "largest relative residual of a Krylov solve")
       .def_readwrite("rigidity_bound", &SolverDescription::rigidity_bound, "largest |A^T A - I|_F of an affine body before the run stops");
+  def_enum(solver, "barrier_hessian", &SolverDescription::barrier_hessian,
+           "BarrierHessian (or its name): projected or gauss_newton");
 
   py::class_<OutputDescription> output(m, "OutputSettings", "scene key `output`.");
   keyword_init<OutputDescription>(output, "OutputSettings");

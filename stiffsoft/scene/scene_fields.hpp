@@ -30,6 +30,10 @@ struct EnumNames<Integrator> {
   static constexpr std::array<const char*, 2> names{"backward_euler", "bdf2"};
 };
 template <>
+struct EnumNames<contact::BarrierHessian> {
+  static constexpr std::array<const char*, 2> names{"projected", "gauss_newton"};
+};
+template <>
 struct EnumNames<Motion> {
   static constexpr std::array<const char*, 3> names{"dynamic", "fixed", "kinematic"};
 };
@@ -84,6 +88,7 @@ void fields(const auto& v, Either<ContactDescription> auto& c) {
 void fields(const auto& v, Either<SolverDescription> auto& s) {
   v("tolerance", s.tolerance);
   v("max_iterations", s.max_iterations);
+  v("barrier_hessian", s.barrier_hessian);
   v("linear", s.linear);
   v("krylov_rtol_max", s.krylov_rtol_max);
   v("rigidity_bound", s.rigidity_bound);

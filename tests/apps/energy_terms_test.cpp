@@ -329,8 +329,18 @@ struct StepTerms {
 /// The model, the contact configuration q_n the terms are lagged at, and the perturbed q the
 /// derivatives are checked at.
 struct Fixture {
+  /// The scene's settings with Newton's barrier Hessian made by `method` (the checks above
+  /// are of the projected form; GaussNewtonBarrier checks the other).
+  explicit Fixture(contact::BarrierHessian method = contact::BarrierHessian::Projected)
+      : settings(with_barrier_hessian(method)) {}
+  /// The prepared scene's settings with `method` (set before `step` is built from them).
+  static SimulationSettings with_barrier_hessian(contact::BarrierHessian method) {
+    SimulationSettings s = prepared().settings;
+    s.barrier_hessian = method;
+    return s;
+  }
   const Model& model = prepared().model;
-  const SimulationSettings& settings = prepared().settings;
+  SimulationSettings settings;
   Eigen::VectorXd q_n = contact_q(model);
   Eigen::VectorXd q = perturbed(model, q_n);
   StepTerms step{model, settings, q_n};
@@ -454,6 +464,38 @@ TEST_P(WholeTerm, HessianIsTheElementwisePsdProjectionOfTheExactHessian) {
     EXPECT_LT(relative_error(H, r.exact), kRoundOff);
   std::cout << "[ " << GetParam() << " ] projection changed the Hessian by ‖H − H_exact‖/‖H_exact‖ = "
             << relative_error(H, r.exact) << "\n";
+}
+
+TEST(GaussNewtonBarrier, HessianIsTheSumOfTheStencilFormsAndPsd) {
+  // solver.barrier_hessian = gauss_newton: each stencil's κ w c(d²) ∇d² ∇d²ᵀ (mollified
+  // stencils projected as before), mapped to q; the value and gradient are unchanged.
+  Fixture f(contact::BarrierHessian::GaussNewton);
+  Fixture projected;
+  const std::vector<EnergyTerm*> terms = f.step.terms("barrier");
+  const Eigen::MatrixX3d x = f.model.surface(f.q);
+  BlockHessian expected(f.model.blocks);
+  int mollified = 0, gauss_newton_stencils = 0;
+  for (const ContactConstraint& k : f.step.barrier.constraints()) {
+    const contact::Vector12d xs = gather(x, k.vertices);
+    const bool gauss_newton = !contact::is_mollified(k.stencil);
+    const contact::Matrix12d H = gauss_newton ? contact::barrier_gauss_newton_hessian(k.stencil, xs, f.settings.dhat)
+                                              : contact::barrier_potential_hessian(k.stencil, xs, f.settings.dhat, true);
+    mollified += contact::is_mollified(k.stencil);
+    gauss_newton_stencils += gauss_newton;
+    StencilJacobian(f.model, k.vertices).scatter_hessian(contact::Matrix12d(f.step.barrier.kappa() * k.weight * H), expected);
+  }
+  std::cout << "[ barrier ] " << f.step.barrier.constraints().size() << " stencils, " << mollified << " mollified, "
+            << gauss_newton_stencils << " in the Gauss–Newton form\n";
+  ASSERT_GT(gauss_newton_stencils, 0) << "the check would not see the Gauss–Newton form";
+  const Eigen::MatrixXd H = dense(f.step.hessian(terms, f.q));
+  ASSERT_GT(H.norm(), 0.0);
+  EXPECT_LT(relative_error(H, dense(expected)), kRoundOff);
+  EXPECT_LT(relative_error(H, H.transpose()), kRoundOff);
+  EXPECT_GE(min_eigenvalue(H), -kRoundOff * H.norm());
+  EXPECT_GT(relative_error(H, dense(projected.step.hessian(projected.step.terms("barrier"), projected.q))), 1e-3)
+      << "the Gauss–Newton form should differ from the projected one";
+  EXPECT_EQ(f.step.value(terms, f.q), projected.step.value(projected.step.terms("barrier"), projected.q));
+  EXPECT_EQ(f.step.gradient(terms, f.q), projected.step.gradient(projected.step.terms("barrier"), projected.q));
 }
 
 TEST_P(WholeTerm, AssembledHessianIsSymmetricPositiveSemiDefinite) {

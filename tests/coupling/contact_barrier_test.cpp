@@ -282,6 +282,53 @@ TEST(BarrierPotential, ProjectedHessianIsPsdAndEqualsTheFullProjection) {
   }
 }
 
+TEST(BarrierPotential, GaussNewtonCoefficientIsTheCurvatureOfTheBarrierInTheDistance) {
+  // c(s) = B''(d) / (4 d²) with B(d) = b(d²): compare with central differences of B in d.
+  const double dhat = 1e-2;
+  for (double frac : {1e-4, 1e-2, 0.1, 0.3, 0.5, 0.7, 0.9, 0.99}) {
+    const double d = frac * dhat, h = 1e-5 * std::min(d, dhat - d);
+    const auto B = [&](double r) { return barrier(r * r, dhat); };
+    const double fd = (B(d + h) - 2 * B(d) + B(d - h)) / (h * h);
+    const double c = barrier_gauss_newton_coefficient(d * d, dhat);
+    EXPECT_GT(c, 0.0) << frac;  // IPC's barrier is convex in d on (0, d̂)
+    EXPECT_NEAR(4 * d * d * c, fd, 1e-4 * std::abs(fd)) << frac;
+  }
+  EXPECT_EQ(barrier_gauss_newton_coefficient(dhat * dhat, dhat), 0.0);
+  EXPECT_EQ(barrier_gauss_newton_coefficient(0.0, dhat), std::numeric_limits<double>::infinity());
+}
+
+TEST(BarrierPotential, GaussNewtonHessianIsRankOnePsdAlongTheDistanceGradient) {
+  const double dhat = 0.1;
+  for (PrimitivePair kind : kAllPairs) {
+    std::mt19937 rng(700 + int(kind));
+    for (int trial = 0; trial < 50; ++trial) {
+      const Vector12d x = stencil_at_distance(kind, dhat * (0.05 + 0.9 * (trial % 10) / 9.0), rng);
+      const Matrix12d G = barrier_gauss_newton_hessian({kind}, x, dhat);
+      EXPECT_GE(min_eigenvalue(G), -1e-12 * G.norm());
+      EXPECT_EQ(barrier_newton_hessian({kind}, x, dhat, BarrierHessian::GaussNewton), G);
+      EXPECT_EQ(barrier_newton_hessian({kind}, x, dhat, BarrierHessian::Projected),
+                barrier_potential_hessian({kind}, x, dhat, true));
+      // G = c ∇d² ∇d²ᵀ: G v = 0 for v ⊥ ∇d², and the exact Hessian agrees along ∇d² up to
+      // the left-out b' ∇²d² term.
+      const Vector12d g = stencil_squared_distance_gradient({kind}, x);
+      const double s = stencil_squared_distance({kind}, x);
+      Vector12d v = Vector12d::NullaryExpr([&](Eigen::Index) { return std::normal_distribution<double>()(rng); });
+      v -= v.dot(g) / g.squaredNorm() * g;
+      EXPECT_LT((G * v).norm(), 1e-10 * G.norm() * v.norm());
+      const Matrix12d H = barrier_potential_hessian({kind}, x, dhat, false);
+      const double left_out = barrier_first_derivative(s, dhat) *
+                              (g.dot(stencil_squared_distance_hessian({kind}, x) * g) - g.squaredNorm() * g.squaredNorm() / (2 * s));
+      EXPECT_NEAR(g.dot(G * g), g.dot(H * g) - left_out, 1e-9 * std::abs(g.dot(H * g)));
+    }
+  }
+  // Mollified stencils keep the projected Hessian.
+  std::mt19937 rng(71);
+  const Vector12d x = nearly_parallel_crossing_edges(0.05, 0.01, rng);
+  const Stencil mollified{PrimitivePair::EdgeEdge, 1e-3};
+  EXPECT_EQ(barrier_newton_hessian(mollified, x, dhat, BarrierHessian::GaussNewton),
+            barrier_potential_hessian(mollified, x, dhat, true));
+}
+
 TEST(ProjectToPsd, ReturnsPsdMatricesAndKeepsPsdOnesExactly) {
   std::mt19937 rng(51);
   std::normal_distribution<double> n(0.0, 1.0);

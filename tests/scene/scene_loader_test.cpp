@@ -131,6 +131,7 @@ TEST(SceneLoader, AGoodSceneKeepsEveryValueItGives) {
   EXPECT_EQ(s.contact.pairs[0].damping, 0.002);
   EXPECT_EQ(s.solver.tolerance, 0.003);
   EXPECT_EQ(s.solver.max_iterations, 17);
+  EXPECT_EQ(s.solver.barrier_hessian, contact::BarrierHessian::GaussNewton);
   EXPECT_EQ(s.solver.linear, "cholmod");
   EXPECT_EQ(s.solver.krylov_rtol_max, 0.01);
   EXPECT_EQ(s.output.frame_dt, 0.05);
@@ -236,6 +237,7 @@ void expect_same_scene(const SceneDescription& a, const SceneDescription& b) {
   EXPECT_EQ(a.contact.kappa, b.contact.kappa);
   EXPECT_EQ(a.solver.tolerance, b.solver.tolerance);
   EXPECT_EQ(a.solver.max_iterations, b.solver.max_iterations);
+  EXPECT_EQ(a.solver.barrier_hessian, b.solver.barrier_hessian);
   EXPECT_EQ(a.solver.linear, b.solver.linear);
   EXPECT_EQ(a.solver.krylov_rtol_max, b.solver.krylov_rtol_max);
   EXPECT_EQ(a.output.frame_dt, b.output.frame_dt);
@@ -305,6 +307,7 @@ TEST(SceneLoader, ResolvedJsonWritesRelativeDefaultsAsNull) {
   EXPECT_TRUE(resolved.at("solver").at("tolerance").is_null());
   EXPECT_TRUE(resolved.at("output").at("frame_dt").is_null());
   EXPECT_EQ(resolved.at("time").at("integrator"), "backward_euler");
+  EXPECT_EQ(resolved.at("solver").at("barrier_hessian"), "projected");
   EXPECT_EQ(resolved.at("bodies").at(0).at("mesh").at("size"), nlohmann::json::array({1.0, 1.0, 1.0}));
   EXPECT_FALSE(resolved.at("bodies").at(0).at("mesh").contains("radius"));
 }

@@ -36,4 +36,14 @@ inline double barrier_second_derivative(double s, double dhat) {
   return -2.0 * std::log(s / s_hat) - 4.0 * ds / s + ds * ds / (s * s);
 }
 
+/// The Gauss–Newton curvature of the barrier along the squared distance: with B(d) = b(d²),
+/// B″(d) ∇d ∇dᵀ = c ∇d² ∇d²ᵀ for c = B″(d)/(4d²) = b''(s) + b'(s)/(2s), clamped at 0 (B is
+/// convex in d on (0, d̂) for IPC's barrier, so the clamp only guards round-off), m⁻².
+inline double barrier_gauss_newton_coefficient(double s, double dhat) {
+  if (s >= dhat * dhat) return 0.0;
+  if (s <= 0.0) return std::numeric_limits<double>::infinity();
+  const double c = barrier_second_derivative(s, dhat) + barrier_first_derivative(s, dhat) / (2.0 * s);
+  return c > 0.0 ? c : 0.0;
+}
+
 }  // namespace stiffsoft::contact

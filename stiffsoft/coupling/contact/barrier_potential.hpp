@@ -121,4 +121,32 @@ inline Matrix12d barrier_potential_hessian(const Stencil& s, const Vector12d& x,
   return H;
 }
 
+/// How Newton's Hessian of a stencil's barrier is made positive semi-definite.
+enum class BarrierHessian {
+  /// The exact ∇²P with its negative eigenvalues clamped to 0 (a 12×12 eigen-decomposition).
+  Projected,
+  /// κ B″(d) ∇d ∇dᵀ (barrier_gauss_newton_hessian): PSD by construction, no decomposition; it
+  /// leaves out B′(d) ∇²d, the distance's own curvature. Mollified edge–edge stencils keep the
+  /// projected Hessian. Cheaper, but it can let contacts close to nanometres: see
+  /// docs/newton.md before using it.
+  GaussNewton
+};
+
+/// The Gauss–Newton Hessian c(d²) ∇d² ∇d²ᵀ of a stencil that is not mollified
+/// (barrier_gauss_newton_coefficient), 12×12, m²; rank one, PSD. Newton's direction changes
+/// with it, not the minimiser: the energy and gradient are those of barrier_potential.
+inline Matrix12d barrier_gauss_newton_hessian(const Stencil& s, const Vector12d& x, double dhat) {
+  const double d2 = stencil_squared_distance(s, x);
+  if (d2 >= dhat * dhat) return Matrix12d::Zero();
+  const Vector12d grad_d2 = stencil_squared_distance_gradient(s, x);
+  return barrier_gauss_newton_coefficient(d2, dhat) * grad_d2 * grad_d2.transpose();
+}
+
+/// Newton's PSD Hessian of one stencil's barrier by `method` (mollified stencils: Projected,
+/// whose mollifier terms the Gauss–Newton form does not cover).
+inline Matrix12d barrier_newton_hessian(const Stencil& s, const Vector12d& x, double dhat, BarrierHessian method) {
+  if (method == BarrierHessian::GaussNewton && !is_mollified(s)) return barrier_gauss_newton_hessian(s, x, dhat);
+  return barrier_potential_hessian(s, x, dhat, true);
+}
+
 }  // namespace stiffsoft::contact

@@ -59,6 +59,7 @@ BarrierSettings barrier_settings(const Model& model, const SimulationSettings& s
   BarrierSettings b;
   b.dhat = s.dhat;
   b.kappa = s.kappa;
+  b.hessian = s.barrier_hessian;
   b.bbox_diagonal = model.bounding_box_diagonal();
   double mass = 0;
   int n = 0;

@@ -25,6 +25,7 @@ struct SimulationSettings {
   std::optional<double> kappa;                    ///< fixed barrier stiffness; unset: adaptive
   double tolerance = NewtonSettings{}.tolerance;  ///< Newton's ε_d (m/s)
   int max_iterations = NewtonSettings{}.max_iterations;  ///< Newton iteration cap per step
+  contact::BarrierHessian barrier_hessian = BarrierSettings{}.hessian;  ///< Newton's Hessian of the barrier stencils
   std::string linear_solver = "auto";             ///< linear solver backend (see make_linear_solver())
   double krylov_rtol_max = ForcingTermSettings{}.eta_max;  ///< largest relative residual a Krylov solve may stop at (η_max)
   double kinematic_weight = 1e4;                  ///< inertia weight pulling kinematic bodies onto their path where they cannot be held on it (see Simulation)

@@ -67,13 +67,14 @@ void BarrierTerm::add_gradient(const Configuration& c, Eigen::VectorXd& g) const
 }
 
 void BarrierTerm::add_hessian(const Configuration& c, BlockHessian& H) const {
-  // The 12×12 eigen-decompositions dominate: they run in parallel, the scatter serially.
+  // The stencils' Hessians (the projected ones' 12×12 eigen-decompositions dominate) run in
+  // parallel, the scatter serially.
   assemble_in_chunks<contact::Matrix12d>(
       m_constraints.size(),
       [&](size_t k, contact::Matrix12d& out) {
         const ContactConstraint& s = m_constraints[k];
         out = m_kappa * s.weight *
-              contact::barrier_potential_hessian(s.stencil, gather(c.x, s.vertices), m_settings.dhat, true);
+              contact::barrier_newton_hessian(s.stencil, gather(c.x, s.vertices), m_settings.dhat, m_settings.hessian);
       },
       [&](size_t k, const contact::Matrix12d& out) {
         StencilJacobian(m_model, m_constraints[k].vertices).scatter_hessian(out, H);

@@ -5,6 +5,7 @@
 #include <optional>
 #include <vector>
 
+#include <stiffsoft/coupling/contact/barrier_potential.hpp>
 #include <stiffsoft/coupling/contact/constraint_set.hpp>
 #include <stiffsoft/coupling/solver/phase_times.hpp>
 #include <stiffsoft/coupling/contact/swept_candidates.hpp>
@@ -18,6 +19,8 @@ struct BarrierSettings {
   std::optional<double> kappa;      ///< fixed barrier stiffness; unset: adaptive (IPC's rule)
   double bbox_diagonal = 1.0;       ///< scene size (m), for the adaptive rule's thresholds
   double average_mass = 1.0;        ///< average dynamic body mass (kg), for κ_min
+  /// Newton's Hessian of each stencil (scene key solver.barrier_hessian).
+  contact::BarrierHessian hessian = contact::BarrierHessian::Projected;
 };
 
 /// The contact barrier term.
