@@ -21,7 +21,7 @@ namespace {
 /// Display numbers tried for a private Xvfb (high, to stay clear of real displays and xvfb-run's :99).
 constexpr int kFirstDisplay = 90;
 constexpr int kLastDisplay = 160;
-/// How long Xvfb may take to open its socket.
+/// How long Xvfb may take to report its display number (it is then accepting connections).
 constexpr auto kStartTimeout = std::chrono::seconds(20);
 
 /// True when Xvfb wrote its display number and the newline after it to `fd` within
