@@ -76,8 +76,9 @@ int main(int argc, char** argv) {
       recorder.record(s, k == steps);
       if (k % 10 == 0 || k == steps) {
         const auto [c, v] = centre_and_velocity(sim, 2);
-        std::printf("t = %.2f s  ball centre = (%.4f, %.4f, %.4f) m  speed = %.4f m/s  Newton iterations = %d\n",
-                    sim.time(), c.x(), c.y(), c.z(), v.norm(), s.newton.iterations);
+        std::printf(
+            "t = %.2f s  ball centre = (%.4f, %.4f, %.4f) m  speed = %.4f m/s  vertical = %.4f m/s  Newton iterations = %d\n",
+            sim.time(), c.x(), c.y(), c.z(), v.norm(), v.y(), s.newton.iterations);
       }
     }
     recorder.finish();

@@ -14,6 +14,16 @@
 namespace stiffsoft {
 
 namespace {
+/// Per body: 1 when one of its surface vertices is in an active contact constraint of the
+/// barrier's last update, else 0.
+std::vector<char> bodies_in_contact(const Model& model, const BarrierTerm& barrier) {
+  std::vector<char> touching(model.bodies.size(), 0);
+  for (const ContactConstraint& k : barrier.constraints())
+    for (int v : k.vertices)
+      if (v >= 0) touching[model.mesh.vertex_body[v]] = 1;
+  return touching;
+}
+
 /// The linear solver of the settings; with linear joint equalities "auto" is CHOLMOD (the
 /// reduced system has no DOF blocks for a Krylov backend) and a PETSc backend is an error.
 std::string linear_solver_name(const Model& model, const SimulationSettings& s) {
@@ -194,6 +204,20 @@ void Simulation::restore(const SimulationState& s) {
 
 Eigen::VectorXd Simulation::initial_guess(const Eigen::VectorXd& q_tilde, const Configuration& c_n) const {
   Eigen::VectorXd q_start = q_tilde;
+  // A body that touches something at qⁿ starts without q̃'s β h² g: what it rests on holds it
+  // there, and the free-fall term would press it into the barrier first, out of which Newton
+  // climbs only slowly (on a log barrier, an iterate too close about doubles its gap per
+  // iteration). The energy still has q̃; only where Newton starts changes.
+  const double beta_h2 = integrator_beta(m_settings.integrator) * m_settings.h * m_settings.h;
+  const std::vector<char> touching = bodies_in_contact(m_model, m_barrier);
+  const SoftNodes& nodes = m_model.nodes;
+  for (int b = 0; b < int(m_model.bodies.size()); ++b) {
+    if (!touching[b]) continue;
+    const BodyModel& body = m_model.bodies[b];
+    if (body.dof >= 0) q_start.segment<3>(body.dof) -= beta_h2 * m_gravity_q.segment<3>(body.dof);
+    for (int i = body.node_begin; i < body.node_end; ++i)
+      if (nodes.dof[i] >= 0) q_start.segment<3>(nodes.dof[i]) -= beta_h2 * m_gravity_q.segment<3>(nodes.dof[i]);
+  }
   for (const BodyModel& body : m_model.bodies) {
     if (body.dof < 0 || body.motion != Motion::Dynamic) continue;
     const abd::Vector12d qb = m_q.segment<12>(body.dof);

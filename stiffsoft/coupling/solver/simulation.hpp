@@ -103,7 +103,8 @@ class Simulation {
  private:
   /// Newton's starting point: every dynamic body moved rigidly (p from q̃, A turned by
   /// exp([ω]× h)), kinematic bodies onto their target (q̃), as far along the straight line from
-  /// qⁿ as CCD allows. Starting at qⁿ would make Newton turn a spinning body through linearised
+  /// qⁿ as CCD allows; bodies in contact at qⁿ start without q̃'s free fall β h² g (they rest
+  /// on something). Starting at qⁿ would make Newton turn a spinning body through linearised
   /// rotations, each of which stretches it against the stiff orthogonality potential.
   Eigen::VectorXd initial_guess(const Eigen::VectorXd& q_tilde, const Configuration& c_n) const;
   /// Minimises the step's energy from q with the prescribed DOF blocks held on their path q̃:
