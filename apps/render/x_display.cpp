@@ -47,7 +47,7 @@ bool wait_for_display_number(int fd) {
 
 }  // namespace
 
-XDisplay::XDisplay() {
+XDisplay::XDisplay(const std::filesystem::path& xvfb_log) {
   if (const char* display = std::getenv("DISPLAY"); display && *display) {
     m_name = display;
     return;
@@ -73,9 +73,9 @@ XDisplay::XDisplay() {
       // The child: Xvfb, quiet, and stopped with us even when we are killed or interrupted.
       ::prctl(PR_SET_PDEATHSIG, SIGTERM);
       ::close(ready[0]);
-      const std::string null = "/dev/null";
-      std::freopen(null.c_str(), "w", stdout);
-      std::freopen(null.c_str(), "w", stderr);
+      const std::string log = xvfb_log.empty() ? "/dev/null" : xvfb_log.string();
+      std::freopen(log.c_str(), "a", stdout);
+      std::freopen(log.c_str(), "a", stderr);
       const std::string fd = std::to_string(ready[1]);
       ::execl(xvfb->c_str(), "Xvfb", name.c_str(), "-displayfd", fd.c_str(), "-screen", "0", "1920x1080x24",
               "-nolisten", "tcp", nullptr);
@@ -97,10 +97,18 @@ XDisplay::XDisplay() {
                            std::to_string(kLastDisplay));
 }
 
+bool XDisplay::running() {
+  if (m_pid <= 0 || m_exited) return !m_exited;
+  m_exited = ::waitpid(m_pid, nullptr, WNOHANG) == m_pid;
+  return !m_exited;
+}
+
 XDisplay::~XDisplay() {
   if (m_pid <= 0) return;
-  ::kill(m_pid, SIGTERM);
-  ::waitpid(m_pid, nullptr, 0);
+  if (!m_exited) {
+    ::kill(m_pid, SIGTERM);
+    ::waitpid(m_pid, nullptr, 0);
+  }
   ::unsetenv("DISPLAY");
 }
 

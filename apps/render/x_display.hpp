@@ -5,6 +5,7 @@
 
 #include <sys/types.h>
 
+#include <filesystem>
 #include <string>
 
 namespace stiffsoft {
@@ -14,7 +15,8 @@ namespace stiffsoft {
 /// goes. Throws std::runtime_error with what to install when there is no display and no Xvfb.
 class XDisplay {
  public:
-  XDisplay();
+  /// `xvfb_log`, when given, receives what a started Xvfb prints (appended); otherwise /dev/null.
+  explicit XDisplay(const std::filesystem::path& xvfb_log = {});
   ~XDisplay();
   XDisplay(const XDisplay&) = delete;
   XDisplay& operator=(const XDisplay&) = delete;
@@ -23,9 +25,12 @@ class XDisplay {
   bool started() const { return m_pid > 0; }
   /// The display in use, e.g. ":0" or ":90".
   const std::string& name() const { return m_name; }
+  /// False once a started Xvfb has exited (true for a display that was already set).
+  bool running();
 
  private:
   pid_t m_pid = -1;
+  bool m_exited = false;  ///< the started Xvfb has exited and was reaped
   std::string m_name;
 };
 

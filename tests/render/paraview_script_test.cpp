@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <iostream>
 
 #include "apps/render/x_display.hpp"
 #include "picture_checks.hpp"
@@ -36,9 +37,6 @@ TEST(ParaViewScript, OpensTheRunColouredInPvbatch) {
   // without one; xvfb-run -a proved racy on a loaded machine).
   if (!on_path("Xvfb") && !std::getenv("DISPLAY"))
     GTEST_SKIP() << "no X display and no Xvfb for pvbatch (apt-get install xvfb libgl1-mesa-dri)";
-  // With Xvfb present, failing to start it is a failure, not a skip.
-  const stiffsoft::XDisplay display;
-
   const fs::path out = fresh_folder("stiffsoft_paraview");
   const fs::path scene = fs::path(STIFFSOFT_SOURCE_DIR) / "scenes/default.json";
   ASSERT_EQ(run_stiffsoft("run " + scene.string() + " -o " + out.string() + " --steps 20", out / "run.log"), 0)
@@ -48,7 +46,25 @@ TEST(ParaViewScript, OpensTheRunColouredInPvbatch) {
   const fs::path png = out / "last.png";
   const std::string command = pvbatch + " " + script.string() +
                               " --screenshot " + png.string() + " > " + (out / "pvbatch.log").string() + " 2>&1";
-  EXPECT_EQ(std::system(command.c_str()), 0) << read_text(out / "pvbatch.log");
+  // CI twice saw pvbatch fail to connect ("bad X server connection") to an Xvfb that had
+  // reported itself ready; the cause was not found here. A connection failure is retried once
+  // on a fresh display, saying so with what Xvfb printed; any other failure is not.
+  for (int attempt = 1;; ++attempt) {
+    const fs::path xvfb_log = out / ("xvfb_" + std::to_string(attempt) + ".log");
+    stiffsoft::XDisplay display(xvfb_log);  // with Xvfb present, failing to start it is a failure, not a skip
+    const int status = std::system(command.c_str());
+    const std::string log = read_text(out / "pvbatch.log");
+    const bool no_connection = log.find("bad X server connection") != std::string::npos;
+    const std::string about_x = "display " + display.name() + (display.started() ? " (private Xvfb, " : " (") +
+                                (display.running() ? "still running" : "gone") + "); Xvfb printed:\n" +
+                                read_text(xvfb_log);
+    if (status != 0 && no_connection && attempt == 1) {
+      std::cerr << "pvbatch could not connect to " << about_x << "\nretrying on a fresh display\n";
+      continue;
+    }
+    ASSERT_EQ(status, 0) << log << "\n" << about_x;
+    break;
+  }
   const std::string log = read_text(out / "pvbatch.log");
   EXPECT_EQ(log.find("Traceback"), std::string::npos) << log;
   ASSERT_TRUE(fs::exists(png)) << log;
