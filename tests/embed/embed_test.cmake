@@ -16,8 +16,12 @@ file(REMOVE_RECURSE ${WORK_DIR})
 set(prefix ${WORK_DIR}/prefix)
 run_step("cmake --install" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
 file(COPY ${SOURCE_DIR}/examples/embed DESTINATION ${WORK_DIR})
+# The example is compiled with this build's own flags: a sanitized package (preset `sanitize`)
+# needs its user to link the sanitizer runtimes too; a release build's are empty.
+load_cache(${BUILD_DIR} READ_WITH_PREFIX package_ CMAKE_CXX_FLAGS CMAKE_EXE_LINKER_FLAGS)
 run_step("configuring examples/embed" ${CMAKE_COMMAND} -S ${WORK_DIR}/embed -B ${WORK_DIR}/build -G ${GENERATOR}
-         -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${prefix})
+         -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${prefix}
+         "-DCMAKE_CXX_FLAGS=${package_CMAKE_CXX_FLAGS}" "-DCMAKE_EXE_LINKER_FLAGS=${package_CMAKE_EXE_LINKER_FLAGS}")
 run_step("building examples/embed" ${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 run_step("running examples/embed" ${WORK_DIR}/build/embed ${WORK_DIR}/out)
 message(STATUS "${step_output}")
