@@ -1,5 +1,6 @@
 #include "peers/verify.hpp"
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <cstdio>
 

@@ -1,5 +1,6 @@
 #include "scene_view.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>

@@ -2,6 +2,7 @@
 /// @file Random contact stencils with known distance, shared by the contact conformance tests.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <random>
 
 #include <stiffsoft/coupling/contact/primitive_pair.hpp>

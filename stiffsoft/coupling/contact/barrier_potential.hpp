@@ -43,83 +43,33 @@ inline bool uses_segment_distance(const Stencil& s) {
 }
 
 /// Classification of an EdgeEdge stencil [ea0; ea1; eb0; eb1].
-inline Classified classify_edge_edge_stencil(const Vector12d& x) {
-  return classify_edge_edge(x.segment<3>(0), x.segment<3>(3), x.segment<3>(6), x.segment<3>(9));
-}
+Classified classify_edge_edge_stencil(const Vector12d& x);
 
 /// Squared distance d² of the stencil, m²: squared_distance(kind, x), or the classified
 /// segment–segment distance when uses_segment_distance(s).
-inline double stencil_squared_distance(const Stencil& s, const Vector12d& x) {
-  if (!uses_segment_distance(s)) return squared_distance(s.kind, x);
-  const Classified c = classify_edge_edge_stencil(x);
-  return squared_distance(c.kind, gather_classified(c, x));
-}
+double stencil_squared_distance(const Stencil& s, const Vector12d& x);
 
 /// ∇_x d² of the stencil, 12-vector, metres.
-inline Vector12d stencil_squared_distance_gradient(const Stencil& s, const Vector12d& x) {
-  if (!uses_segment_distance(s)) return squared_distance_gradient(s.kind, x);
-  const Classified c = classify_edge_edge_stencil(x);
-  return scatter_classified(c, squared_distance_gradient(c.kind, gather_classified(c, x)));
-}
+Vector12d stencil_squared_distance_gradient(const Stencil& s, const Vector12d& x);
 
 /// ∇²_x d² of the stencil, 12×12, dimensionless.
-inline Matrix12d stencil_squared_distance_hessian(const Stencil& s, const Vector12d& x) {
-  if (!uses_segment_distance(s)) return squared_distance_hessian(s.kind, x);
-  const Classified c = classify_edge_edge_stencil(x);
-  return scatter_classified(c, squared_distance_hessian(c.kind, gather_classified(c, x)));
-}
+Matrix12d stencil_squared_distance_hessian(const Stencil& s, const Vector12d& x);
 
 /// Closest points of the stencil (weights over the stencil's 4 vertices, residual r, and the
 /// parameters of the used pair), classified for segment-distance stencils.
-inline ClosestPoints stencil_closest_points(const Stencil& s, const Vector12d& x) {
-  if (!uses_segment_distance(s)) return closest_points(s.kind, x);
-  const Classified c = classify_edge_edge_stencil(x);
-  ClosestPoints sub = closest_points(c.kind, gather_classified(c, x));
-  ClosestPoints out = sub;
-  out.weights.setZero();
-  for (int i = 0; i < vertex_count(c.kind); ++i) out.weights[c.local[i]] += sub.weights[i];
-  return out;
-}
+ClosestPoints stencil_closest_points(const Stencil& s, const Vector12d& x);
 
 /// Barrier potential P(x) = m(x) b(d²(x), d̂) of one stencil (m ≡ 1 unless mollified), m⁴;
 /// multiply by κ for an energy. x: packed stencil, m; dhat: d̂, m.
-inline double barrier_potential(const Stencil& s, const Vector12d& x, double dhat) {
-  const double d2 = stencil_squared_distance(s, x);
-  if (d2 >= dhat * dhat) return 0.0;
-  const double b = barrier(d2, dhat);
-  return is_mollified(s) ? edge_edge_mollifier(x, s.eps_x) * b : b;
-}
+double barrier_potential(const Stencil& s, const Vector12d& x, double dhat);
 
 /// ∇P = m b'(d²) ∇d² + b ∇m, 12-vector, m³.
-inline Vector12d barrier_potential_gradient(const Stencil& s, const Vector12d& x, double dhat) {
-  const double d2 = stencil_squared_distance(s, x);
-  if (d2 >= dhat * dhat) return Vector12d::Zero();
-  const Vector12d grad_d2 = stencil_squared_distance_gradient(s, x);
-  const double db = barrier_first_derivative(d2, dhat);
-  if (!is_mollified(s)) return db * grad_d2;
-  return edge_edge_mollifier(x, s.eps_x) * db * grad_d2 +
-         barrier(d2, dhat) * edge_edge_mollifier_gradient(x, s.eps_x);
-}
+Vector12d barrier_potential_gradient(const Stencil& s, const Vector12d& x, double dhat);
 
 /// ∇²P = m (b'' ∇d² ∇d²ᵀ + b' ∇²d²) + b' (∇m ∇d²ᵀ + ∇d² ∇mᵀ) + b ∇²m, 12×12, m².
 /// project_psd: clamp the negative eigenvalues of the active (3·vertex_count)² block to 0.
-inline Matrix12d barrier_potential_hessian(const Stencil& s, const Vector12d& x, double dhat,
-                                           bool project_psd) {
-  const double d2 = stencil_squared_distance(s, x);
-  if (d2 >= dhat * dhat) return Matrix12d::Zero();
-  const Vector12d grad_d2 = stencil_squared_distance_gradient(s, x);
-  const double db = barrier_first_derivative(d2, dhat);
-  const double ddb = barrier_second_derivative(d2, dhat);
-  Matrix12d H = ddb * grad_d2 * grad_d2.transpose() + db * stencil_squared_distance_hessian(s, x);
-  if (is_mollified(s)) {
-    const double m = edge_edge_mollifier(x, s.eps_x);
-    const Vector12d grad_m = edge_edge_mollifier_gradient(x, s.eps_x);
-    H = m * H + db * (grad_m * grad_d2.transpose() + grad_d2 * grad_m.transpose()) +
-        barrier(d2, dhat) * edge_edge_mollifier_hessian(x, s.eps_x);
-  }
-  if (project_psd) project_leading_block_to_psd(H, vertex_count(s.kind));
-  return H;
-}
+Matrix12d barrier_potential_hessian(const Stencil& s, const Vector12d& x, double dhat,
+                                    bool project_psd);
 
 /// How Newton's Hessian of a stencil's barrier is made positive semi-definite.
 enum class BarrierHessian {
@@ -135,18 +85,10 @@ enum class BarrierHessian {
 /// The Gauss–Newton Hessian c(d²) ∇d² ∇d²ᵀ of a stencil that is not mollified
 /// (barrier_gauss_newton_coefficient), 12×12, m²; rank one, PSD. Newton's direction changes
 /// with it, not the minimiser: the energy and gradient are those of barrier_potential.
-inline Matrix12d barrier_gauss_newton_hessian(const Stencil& s, const Vector12d& x, double dhat) {
-  const double d2 = stencil_squared_distance(s, x);
-  if (d2 >= dhat * dhat) return Matrix12d::Zero();
-  const Vector12d grad_d2 = stencil_squared_distance_gradient(s, x);
-  return barrier_gauss_newton_coefficient(d2, dhat) * grad_d2 * grad_d2.transpose();
-}
+Matrix12d barrier_gauss_newton_hessian(const Stencil& s, const Vector12d& x, double dhat);
 
 /// Newton's PSD Hessian of one stencil's barrier by `method` (mollified stencils: Projected,
 /// whose mollifier terms the Gauss–Newton form does not cover).
-inline Matrix12d barrier_newton_hessian(const Stencil& s, const Vector12d& x, double dhat, BarrierHessian method) {
-  if (method == BarrierHessian::GaussNewton && !is_mollified(s)) return barrier_gauss_newton_hessian(s, x, dhat);
-  return barrier_potential_hessian(s, x, dhat, true);
-}
+Matrix12d barrier_newton_hessian(const Stencil& s, const Vector12d& x, double dhat, BarrierHessian method);
 
 }  // namespace stiffsoft::contact
