@@ -3,12 +3,16 @@
 #include <poll.h>
 #include <signal.h>
 #include <sys/prctl.h>
+#include <sys/socket.h>
+#include <sys/un.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <chrono>
+#include <cstddef>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
 
@@ -45,6 +49,28 @@ bool wait_for_display_number(int fd) {
   }
 }
 
+/// True when an X server accepts connections on display n's socket: the abstract one
+/// (@/tmp/.X11-unix/Xn, which Linux keeps per network namespace, so a server of another
+/// container on the same host can hold it with no lock file in our /tmp) or the file one.
+/// Clients try the abstract socket first, so a display whose abstract socket another server
+/// answers is not ours to take even when our Xvfb starts on it (it then listens on the file only).
+bool someone_serves(int n) {
+  const std::string path = "/tmp/.X11-unix/X" + std::to_string(n);
+  for (const bool abstract : {true, false}) {
+    const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    if (fd < 0) return false;
+    sockaddr_un address{};
+    address.sun_family = AF_UNIX;
+    const std::size_t offset = abstract ? 1 : 0;  // abstract: a leading NUL byte
+    std::memcpy(address.sun_path + offset, path.data(), path.size());
+    const auto length = static_cast<socklen_t>(offsetof(sockaddr_un, sun_path) + offset + path.size());
+    const bool answered = ::connect(fd, reinterpret_cast<const sockaddr*>(&address), length) == 0;
+    ::close(fd);
+    if (answered) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 XDisplay::XDisplay(const std::filesystem::path& xvfb_log) {
@@ -60,7 +86,7 @@ XDisplay::XDisplay(const std::filesystem::path& xvfb_log) {
   for (int n = kFirstDisplay; n <= kLastDisplay; ++n) {
     std::string name = ":";  // (not ":" + …: GCC 12 warns a false -Wrestrict there)
     name += std::to_string(n);
-    if (std::filesystem::exists("/tmp/.X" + std::to_string(n) + "-lock")) continue;
+    if (std::filesystem::exists("/tmp/.X" + std::to_string(n) + "-lock") || someone_serves(n)) continue;
     // Xvfb writes the display number to -displayfd once it accepts connections, and only the
     // Xvfb that holds the display's lock gets that far: one that lost the number to another
     // process (a parallel test, another render) exits and closes the pipe instead. Watching

@@ -11,7 +11,8 @@
 namespace stiffsoft {
 
 /// Makes sure $DISPLAY names a display while it lives: the one already set, or a private Xvfb
-/// started on the first free display number from :90 up (safe against parallel starts) and stopped (SIGTERM) when this object
+/// started on the first free display number from :90 up (no lock file, no server answering its
+/// sockets; safe against parallel starts) and stopped (SIGTERM) when this object
 /// goes. Throws std::runtime_error with what to install when there is no display and no Xvfb.
 class XDisplay {
  public:

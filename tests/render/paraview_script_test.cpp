@@ -47,8 +47,11 @@ TEST(ParaViewScript, OpensTheRunColouredInPvbatch) {
   const std::string command = pvbatch + " " + script.string() +
                               " --screenshot " + png.string() + " > " + (out / "pvbatch.log").string() + " 2>&1";
   // CI twice saw pvbatch fail to connect ("bad X server connection") to an Xvfb that had
-  // reported itself ready; the cause was not found here. A connection failure is retried once
-  // on a fresh display, saying so with what Xvfb printed; any other failure is not.
+  // reported itself ready, on the first display number tried (:99 under xvfb-run, :90 here);
+  // never reproduced on this machine. One possible cause, now avoided by XDisplay: another
+  // server answering that display's abstract socket, which clients try first and which a
+  // lock file in our /tmp does not reveal. A connection failure is still retried once on a
+  // fresh display, saying so with what Xvfb printed; any other failure is not.
   for (int attempt = 1;; ++attempt) {
     const fs::path xvfb_log = out / ("xvfb_" + std::to_string(attempt) + ".log");
     stiffsoft::XDisplay display(xvfb_log);  // with Xvfb present, failing to start it is a failure, not a skip
