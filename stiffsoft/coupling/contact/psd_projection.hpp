@@ -15,12 +15,6 @@ namespace stiffsoft::contact {
 template <int N>
 Eigen::Matrix<double, N, N> project_to_psd(const Eigen::Matrix<double, N, N>& A);
 
-extern template Eigen::Matrix<double, 2, 2> project_to_psd<2>(const Eigen::Matrix<double, 2, 2>&);
-extern template Eigen::Matrix<double, 3, 3> project_to_psd<3>(const Eigen::Matrix<double, 3, 3>&);
-extern template Eigen::Matrix<double, 6, 6> project_to_psd<6>(const Eigen::Matrix<double, 6, 6>&);
-extern template Eigen::Matrix<double, 9, 9> project_to_psd<9>(const Eigen::Matrix<double, 9, 9>&);
-extern template Eigen::Matrix<double, 12, 12> project_to_psd<12>(const Eigen::Matrix<double, 12, 12>&);
-
 /// Projects the leading (3·n)×(3·n) block of a stencil Hessian (n = active vertices, 1..4) to
 /// PSD in place; the rest is zero by construction for contact stencils and stays untouched.
 /// Projecting only the active block is cheaper and gives the same result as the full 12×12.

@@ -124,32 +124,20 @@ Matrix12d residual_hessian(const AffineResidual<M>& res, const Vector12d& x) {
 ClosestPoints closest_points(PrimitivePair kind, const Vector12d& x) {
   ClosestPoints cp;
   cp.params.setZero();
+  // The minimiser's weights, residual and its M parameters (the rest stay zero).
+  const auto take = [&cp](const auto& m) {
+    cp.weights = m.c;
+    cp.r = m.r;
+    cp.params.head(m.y.size()) = m.y;
+  };
   switch (kind) {
     case PrimitivePair::VertexVertex:
       cp.weights = Eigen::Vector4d(1, -1, 0, 0);
       cp.r = combine(x, cp.weights);
       break;
-    case PrimitivePair::EdgeVertex: {
-      const auto m = minimize_residual(edge_vertex_residual(), x);
-      cp.weights = m.c;
-      cp.r = m.r;
-      cp.params[0] = m.y[0];
-      break;
-    }
-    case PrimitivePair::EdgeEdge: {
-      const auto m = minimize_residual(edge_edge_residual(), x);
-      cp.weights = m.c;
-      cp.r = m.r;
-      cp.params = m.y;
-      break;
-    }
-    case PrimitivePair::FaceVertex: {
-      const auto m = minimize_residual(face_vertex_residual(), x);
-      cp.weights = m.c;
-      cp.r = m.r;
-      cp.params = m.y;
-      break;
-    }
+    case PrimitivePair::EdgeVertex: take(minimize_residual(edge_vertex_residual(), x)); break;
+    case PrimitivePair::EdgeEdge: take(minimize_residual(edge_edge_residual(), x)); break;
+    case PrimitivePair::FaceVertex: take(minimize_residual(face_vertex_residual(), x)); break;
   }
   return cp;
 }
