@@ -467,6 +467,25 @@ TEST(AutoSolver, TakesCholmodWhenItsFactorisationIsCheapAndPetscOtherwise) {
   }
 }
 
+TEST(CholmodSolver, TakesTheSupernodalMethodOnlyWhereItsDenseBlocksPay) {
+  // A pile's system (stored, 12×12 body blocks, sparse factor) goes simplicial; a 3D lattice's
+  // fill (soft-mesh-like) goes supernodal. Both solve to round-off, and both refuse an
+  // indefinite matrix (simplicial factors are LLᵀ too, which fail on a non-positive pivot).
+  const LinearSystem pile = load_linear_system(kDataDir, kSystems[1]);
+  const Eigen::SparseMatrix<double> lattice = lattice_upper(8);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(lattice.rows(), -1, 1);
+  CholmodSolver solver;
+  solver.analyze_pattern(pile.upper);
+  EXPECT_FALSE(solver.supernodal());
+  ASSERT_TRUE(solver.factorize(pile.upper));
+  EXPECT_LE(relative_residual(pile, solver.solve(pile.b)), 1e-10);
+  EXPECT_FALSE(solver.factorize(indefinite(pile)));
+  solver.analyze_pattern(lattice);
+  EXPECT_TRUE(solver.supernodal());
+  ASSERT_TRUE(solver.factorize(lattice));
+  EXPECT_LE((b - lattice.selfadjointView<Eigen::Upper>() * solver.solve(b)).norm() / b.norm(), 1e-10);
+}
+
 // --- PETSc options, command line, forcing terms --------------------------------------------------
 
 TEST(PetscSolver, TheOptionsDatabaseOverridesTheNamedMethod) {

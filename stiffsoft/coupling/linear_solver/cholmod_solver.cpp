@@ -41,10 +41,25 @@ class OpenMpScope {
   int m_levels, m_dynamic;
 };
 
+/// CHOLMOD's LLᵀ, supernodal or simplicial as its analysis chooses (CholmodAuto: supernodal
+/// when the factorisation's flops per factor entry reach Common->supernodal_switch, 40), with
+/// simplicial factors computed as LLᵀ too (not CHOLMOD's default LDLᵀ), so that a
+/// non-positive pivot fails the factorisation as it does in the supernodal one.
+class Factorisation : public Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>, Eigen::Upper> {
+ public:
+  Factorisation() {
+    setMode(Eigen::CholmodAuto);
+    cholmod().final_asis = 0;
+    cholmod().final_ll = 1;
+  }
+  /// Whether the last analysis chose the supernodal method.
+  bool supernodal() const { return m_cholmodFactor && m_cholmodFactor->is_super; }
+};
+
 }  // namespace
 
 struct CholmodSolver::Impl {
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper> llt;
+  Factorisation llt;
   double flops = 0, nonzeros = 0;     // predicted by the last analysis
   Eigen::SparseMatrix<double> upper;  // the factorised H, for the residual
   bool factorized = false;
@@ -66,6 +81,8 @@ void CholmodSolver::analyze_pattern(const Eigen::SparseMatrix<double>& upper) {
 double CholmodSolver::factor_flops() const { return m_impl->flops; }
 
 double CholmodSolver::factor_nonzeros() const { return m_impl->nonzeros; }
+
+bool CholmodSolver::supernodal() const { return m_impl->llt.supernodal(); }
 
 bool CholmodSolver::factorize(const Eigen::SparseMatrix<double>& upper) {
   const auto start = std::chrono::steady_clock::now();

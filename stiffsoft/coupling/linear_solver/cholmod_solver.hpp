@@ -1,5 +1,5 @@
 #pragma once
-/// @file CHOLMOD supernodal Cholesky (SuiteSparse) behind the LinearSolver interface.
+/// @file CHOLMOD Cholesky (SuiteSparse) behind the LinearSolver interface.
 
 #include <memory>
 
@@ -7,7 +7,11 @@
 
 namespace stiffsoft {
 
-/// Direct sparse Cholesky H = L Lᵀ with CHOLMOD's supernodal method (through Eigen's wrapper).
+/// Direct sparse Cholesky H = L Lᵀ with CHOLMOD (through Eigen's wrapper): supernodal where
+/// the factorisation has enough flops per factor entry for dense blocks to pay (soft meshes),
+/// simplicial otherwise (piles of affine bodies, whose factors are sparse and cheap: there the
+/// supernodal method's per-supernode BLAS calls cost more than the arithmetic). CHOLMOD's
+/// analysis chooses, with its own threshold.
 /// Its report gives the explicit relative residual ‖b − H p‖/‖b‖ (one extra product with H).
 class CholmodSolver final : public LinearSolver {
  public:
@@ -28,6 +32,8 @@ class CholmodSolver final : public LinearSolver {
   double factor_flops() const;
   /// Stored entries of the factor L the analysis predicts (cholmod_common::lnz).
   double factor_nonzeros() const;
+  /// Whether the last analysis chose the supernodal method (else simplicial).
+  bool supernodal() const;
 
  private:
   struct Impl;

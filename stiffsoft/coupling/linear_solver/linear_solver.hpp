@@ -50,7 +50,7 @@ class LinearSolver {
 };
 
 /// The backend called `name`; throws std::invalid_argument for an unknown one. Names:
-///  - "cholmod": CHOLMOD supernodal Cholesky;
+///  - "cholmod": CHOLMOD Cholesky (supernodal or simplicial, see CholmodSolver);
 ///  - "petsc": PETSc KSP with the default method (see default_petsc_method());
 ///  - "petsc:KSP" or "petsc:KSP:PC": KSP ∈ {cg, minres, gmres}, PC ∈ {none, jacobi, pbjacobi
 ///    (3×3 blocks), vpbjacobi (DOF blocks, 12×12 / 3×3), icc, gamg, hypre (BoomerAMG)}, e.g.
