@@ -65,7 +65,7 @@ Matrix12d barrier_potential_hessian(const Stencil& s, const Vector12d& x, double
     H = m * H + db * (grad_m * grad_d2.transpose() + grad_d2 * grad_m.transpose()) +
         barrier(d2, dhat) * edge_edge_mollifier_hessian(x, s.eps_x);
   }
-  if (project_psd) project_leading_block_to_psd(H, vertex_count(s.kind));
+  if (project_psd) project_translation_invariant_to_psd(H, vertex_count(s.kind));
   return H;
 }
 

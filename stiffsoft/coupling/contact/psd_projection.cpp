@@ -1,6 +1,7 @@
 #include <stiffsoft/coupling/contact/psd_projection.hpp>
 
 #include <Eigen/Eigenvalues>
+#include <cmath>
 
 namespace stiffsoft::contact {
 
@@ -19,12 +20,43 @@ template Eigen::Matrix<double, 6, 6> project_to_psd<6>(const Eigen::Matrix<doubl
 template Eigen::Matrix<double, 9, 9> project_to_psd<9>(const Eigen::Matrix<double, 9, 9>&);
 template Eigen::Matrix<double, 12, 12> project_to_psd<12>(const Eigen::Matrix<double, 12, 12>&);
 
-void project_leading_block_to_psd(Eigen::Matrix<double, 12, 12>& H, int active_vertices) {
+namespace {
+
+/// Q = U ⊗ I₃, (3n)×(3n − 3): column block j of U (j = 1 … n − 1) is (1, …, 1, −j, 0, …)/√(j(j + 1))
+/// with j ones, orthonormal and orthogonal to (1, …, 1).
+template <int n>
+Eigen::Matrix<double, 3 * n, 3 * n - 3> translation_complement() {
+  Eigen::Matrix<double, 3 * n, 3 * n - 3> Q = Eigen::Matrix<double, 3 * n, 3 * n - 3>::Zero();
+  for (int j = 1; j < n; ++j) {
+    const double scale = 1.0 / std::sqrt(double(j * (j + 1)));
+    for (int i = 0; i <= j; ++i)
+      Q.template block<3, 3>(3 * i, 3 * (j - 1)) = (i < j ? scale : -j * scale) * Eigen::Matrix3d::Identity();
+  }
+  return Q;
+}
+
+template <int n>
+void project_in_translation_complement(Eigen::Matrix<double, 12, 12>& H) {
+  constexpr int d = 3 * n, r = 3 * n - 3;
+  static const Eigen::Matrix<double, d, r> Q = translation_complement<n>();
+  // Coefficient-based products: Eigen would send these small fixed products to its blocked GEMM.
+  const Eigen::Matrix<double, d, r> HQ = H.template topLeftCorner<d, d>().lazyProduct(Q);
+  const Eigen::Matrix<double, r, r> R = Q.transpose().lazyProduct(HQ);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, r, r>> es(R);
+  const auto& lambda = es.eigenvalues();
+  if (lambda.minCoeff() >= 0.0) return;
+  const Eigen::Matrix<double, d, r> QV = Q.lazyProduct(es.eigenvectors());
+  const Eigen::Matrix<double, r, d> LQVt = lambda.cwiseMax(0.0).asDiagonal() * QV.transpose();
+  H.template topLeftCorner<d, d>() = QV.lazyProduct(LQVt);
+}
+
+}  // namespace
+
+void project_translation_invariant_to_psd(Eigen::Matrix<double, 12, 12>& H, int active_vertices) {
   switch (active_vertices) {
-    case 1: H.topLeftCorner<3, 3>() = project_to_psd<3>(H.topLeftCorner<3, 3>()); break;
-    case 2: H.topLeftCorner<6, 6>() = project_to_psd<6>(H.topLeftCorner<6, 6>()); break;
-    case 3: H.topLeftCorner<9, 9>() = project_to_psd<9>(H.topLeftCorner<9, 9>()); break;
-    default: H = project_to_psd<12>(H); break;
+    case 2: project_in_translation_complement<2>(H); break;
+    case 3: project_in_translation_complement<3>(H); break;
+    default: project_in_translation_complement<4>(H); break;
   }
 }
 

@@ -15,9 +15,14 @@ namespace stiffsoft::contact {
 template <int N>
 Eigen::Matrix<double, N, N> project_to_psd(const Eigen::Matrix<double, N, N>& A);
 
-/// Projects the leading (3·n)×(3·n) block of a stencil Hessian (n = active vertices, 1..4) to
-/// PSD in place; the rest is zero by construction for contact stencils and stays untouched.
-/// Projecting only the active block is cheaper and gives the same result as the full 12×12.
-void project_leading_block_to_psd(Eigen::Matrix<double, 12, 12>& H, int active_vertices);
+/// Projects the Hessian of a translation-invariant stencil energy (the barrier: distances and
+/// the mollifier only depend on differences of positions) to PSD in place. Only the leading
+/// (3·n)×(3·n) block (n = active vertices, 2..4) is non-zero and it annihilates the common
+/// translations of those vertices, so it is projected in their orthogonal complement,
+/// H = Q R Qᵀ with Q = U ⊗ I₃ and U's n − 1 orthonormal (Helmert) columns orthogonal to
+/// (1, …, 1): R is (3n − 3)×(3n − 3), a 9×9 eigen-decomposition instead of a 12×12 one for
+/// face–vertex and edge–edge stencils, with the same result as projecting the whole matrix.
+/// Leaves H untouched, bit for bit, when R is already PSD.
+void project_translation_invariant_to_psd(Eigen::Matrix<double, 12, 12>& H, int active_vertices);
 
 }  // namespace stiffsoft::contact
