@@ -264,7 +264,8 @@ TEST(BarrierPotential, ProjectedHessianIsPsdAndEqualsTheFullProjection) {
       const Matrix12d H = barrier_potential_hessian({kind}, x, dhat, false);
       const Matrix12d Hp = barrier_potential_hessian({kind}, x, dhat, true);
       EXPECT_GE(min_eigenvalue(Hp), -1e-10 * Hp.norm());
-      // Projecting only the active block equals projecting the whole 12×12 matrix.
+      // Projecting in the complement of the active vertices' common translations equals
+      // projecting the whole 12×12 matrix.
       EXPECT_LT((Hp - project_to_psd<12>(H)).norm(), 1e-10 * H.norm());
       // inactive rows and columns stay exactly zero
       const int n = 3 * vertex_count(kind);
@@ -280,6 +281,10 @@ TEST(BarrierPotential, ProjectedHessianIsPsdAndEqualsTheFullProjection) {
     const Vector12d x = nearly_parallel_crossing_edges(0.05, 0.01, rng);
     const Matrix12d Hp = barrier_potential_hessian({PrimitivePair::EdgeEdge, 1e-3}, x, dhat, true);
     EXPECT_GE(min_eigenvalue(Hp), -1e-10 * Hp.norm());
+    // The mollifier is translation invariant too: projecting in the complement of the common
+    // translations equals projecting the whole matrix.
+    const Matrix12d H = barrier_potential_hessian({PrimitivePair::EdgeEdge, 1e-3}, x, dhat, false);
+    EXPECT_LT((Hp - project_to_psd<12>(H)).norm(), 1e-10 * H.norm());
   }
 }
 
