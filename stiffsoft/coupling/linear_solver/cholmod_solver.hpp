@@ -12,7 +12,8 @@ namespace stiffsoft {
 /// simplicial otherwise (piles of affine bodies, whose factors are sparse and cheap: there the
 /// supernodal method's per-supernode BLAS calls cost more than the arithmetic). CHOLMOD's
 /// analysis chooses, with its own threshold.
-/// Its report gives the explicit relative residual ‖b − H p‖/‖b‖ (one extra product with H).
+/// Each solve takes one step of iterative refinement; its report gives the explicit relative
+/// residual ‖b − H p‖/‖b‖.
 class CholmodSolver final : public LinearSolver {
  public:
   /// A solver with nothing analysed yet: call analyze_pattern() first.
