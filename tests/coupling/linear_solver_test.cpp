@@ -484,6 +484,9 @@ TEST(CholmodSolver, TakesTheSupernodalMethodOnlyWhereItsDenseBlocksPay) {
   EXPECT_TRUE(solver.supernodal());
   ASSERT_TRUE(solver.factorize(lattice));
   EXPECT_LE((b - lattice.selfadjointView<Eigen::Upper>() * solver.solve(b)).norm() / b.norm(), 1e-10);
+  Eigen::SparseMatrix<double> shifted = lattice;  // its diagonal stays below 2e5: now negative definite
+  for (int i = 0; i < shifted.rows(); ++i) shifted.coeffRef(i, i) -= 1e6;
+  EXPECT_FALSE(solver.factorize(shifted));
 }
 
 // --- PETSc options, command line, forcing terms --------------------------------------------------

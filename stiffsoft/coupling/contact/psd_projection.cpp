@@ -15,8 +15,6 @@ Eigen::Matrix<double, N, N> project_to_psd(const Eigen::Matrix<double, N, N>& A)
 }
 
 template Eigen::Matrix<double, 2, 2> project_to_psd<2>(const Eigen::Matrix<double, 2, 2>&);
-template Eigen::Matrix<double, 3, 3> project_to_psd<3>(const Eigen::Matrix<double, 3, 3>&);
-template Eigen::Matrix<double, 6, 6> project_to_psd<6>(const Eigen::Matrix<double, 6, 6>&);
 template Eigen::Matrix<double, 9, 9> project_to_psd<9>(const Eigen::Matrix<double, 9, 9>&);
 
 namespace {

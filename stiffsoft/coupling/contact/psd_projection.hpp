@@ -1,6 +1,6 @@
 #pragma once
 /// @file Projection of symmetric stencil Hessians onto the positive semi-definite cone.
-/// The definitions live in psd_projection.cpp, instantiated there for N = 2, 3, 6 and 9:
+/// The definitions live in psd_projection.cpp, instantiated there for N = 2 and 9:
 /// Eigen's fixed-size eigensolvers cost every file that includes this header about half a
 /// minute of compile time when they are instantiated inline.
 
@@ -11,8 +11,8 @@ namespace stiffsoft::contact {
 /// Nearest (Frobenius) positive semi-definite matrix to the symmetric N×N matrix A:
 /// A = V Λ Vᵀ → V max(Λ, 0) Vᵀ (projected Newton, Teran et al. 2005; IPC §4).
 /// Reads the lower triangle of A. Returns A itself, bit for bit, when it is already PSD,
-/// so that projecting a PSD Hessian never perturbs it. Instantiated for N = 2, 3, 6, 9 (no
-/// 12: every 12-DOF stencil Hessian here is translation invariant and projected in 9).
+/// so that projecting a PSD Hessian never perturbs it. Instantiated for N = 2 (friction's
+/// tangent core) and 9; barrier stencils use project_translation_invariant_to_psd.
 template <int N>
 Eigen::Matrix<double, N, N> project_to_psd(const Eigen::Matrix<double, N, N>& A);
 
