@@ -58,6 +58,11 @@ void BlockHessian::add(int i, int j, const Eigen::Ref<const Eigen::MatrixXd>& H)
     block_at(live_slot(j, i).at, j, i) += H.transpose();
 }
 
+void BlockHessian::add_upper(int i, int j, const double* values) {
+  const ConstBlock H(values, m_blocks[i].size, m_blocks[j].size);
+  block_at(i == j ? m_diagonal[i] : live_slot(i, j).at, i, j) += H;
+}
+
 void BlockHessian::decouple(const std::vector<char>& held) {
   for (const Slot& s : m_slots)
     if (live(s) && (held[s.row] || held[s.column])) block_at(s.at, s.row, s.column).setZero();

@@ -28,6 +28,8 @@ class BlockHessian {
   void clear();
   /// Adds H (size_i × size_j) to block (i, j); for i > j the transpose is added to (j, i).
   void add(int i, int j, const Eigen::Ref<const Eigen::MatrixXd>& H);
+  /// Adds the size_i × size_j column-major block stored at `values` to block (i, j), i ≤ j.
+  void add_upper(int i, int j, const double* values);
   /// Zeroes every off-diagonal block in the row or column of a block with held[b] ≠ 0 (DOFs
   /// held on a prescribed motion): those blocks then decouple from the rest. The sparsity
   /// pattern stays as it was.

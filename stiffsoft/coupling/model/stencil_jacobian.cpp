@@ -1,5 +1,7 @@
 #include <stiffsoft/coupling/model/stencil_jacobian.hpp>
 
+#include <stdexcept>
+
 namespace stiffsoft {
 
 namespace {
@@ -41,13 +43,17 @@ void StencilJacobian::scatter_gradient(const Eigen::Matrix<double, 12, 1>& g_x, 
   }
 }
 
-void StencilJacobian::scatter_hessian(const Eigen::Matrix<double, 12, 12>& H_x, BlockHessian& H) const {
-  Eigen::Matrix<double, 12, 12> out;
+void StencilJacobian::block_hessians(const Eigen::Matrix<double, 12, 12>& H_x, StencilHessian& out) const {
+  out.count = 0;
+  int next = 0;
   for (int s = 0; s < slots; ++s) {
     for (int t = 0; t < slots; ++t) {
       if (block[t] > block[s]) continue;
+      if (next + columns[t] * columns[s] > StencilHessian::kCapacity)
+        throw std::logic_error("StencilJacobian: a stencil spans more DOFs than two affine bodies");
       const int nk = weights(columns[t]), nl = weights(columns[s]);
-      out.topLeftCorner(columns[t], columns[s]).setZero();
+      Eigen::Map<Eigen::MatrixXd> block_ts(out.values.data() + next, columns[t], columns[s]);
+      block_ts.setZero();
       // J_tᵀ H J_s = Σ over vertex pairs (a in t, b in s) of w_a w_bᵀ ⊗ H_ab, in q's order.
       for (int a = 0; a < 4; ++a) {
         if (slot_of[a] != t) continue;
@@ -58,13 +64,27 @@ void StencilJacobian::scatter_hessian(const Eigen::Matrix<double, 12, 12>& H_x, 
             for (int l = 0; l < nl; ++l) {
               const double c = w[a][k] * w[b][l];
               for (int j = 0; j < 3; ++j)
-                for (int i = 0; i < 3; ++i) out(kDof[k][i], kDof[l][j]) += c * H_ab(i, j);
+                for (int i = 0; i < 3; ++i) block_ts(kDof[k][i], kDof[l][j]) += c * H_ab(i, j);
             }
         }
       }
-      H.add(block[t], block[s], out.topLeftCorner(columns[t], columns[s]));
+      out.row[out.count] = block[t];
+      out.column[out.count] = block[s];
+      out.at[out.count] = next;
+      ++out.count;
+      next += columns[t] * columns[s];
     }
   }
+}
+
+void StencilJacobian::scatter_hessian(const Eigen::Matrix<double, 12, 12>& H_x, BlockHessian& H) const {
+  StencilHessian blocks;
+  block_hessians(H_x, blocks);
+  blocks.add_to(H);
+}
+
+void StencilHessian::add_to(BlockHessian& H) const {
+  for (int k = 0; k < count; ++k) H.add_upper(row[k], column[k], values.data() + at[k]);
 }
 
 }  // namespace stiffsoft

@@ -16,6 +16,21 @@
 
 namespace stiffsoft {
 
+/// Jᵀ H_x J of one stencil, split into the dense blocks it adds to the global Hessian: made
+/// where the stencil's Hessian is (in parallel, chunked_assembly.hpp), added serially.
+struct StencilHessian {
+  /// Entries of the largest case: a stencil spans at most two affine bodies, whose blocks
+  /// (1,1), (1,2), (2,2) are 12×12 each.
+  static constexpr int kCapacity = 3 * 144;
+  int count = 0;                      ///< number of blocks
+  std::array<int, 10> row{}, column{};  ///< global block indices, row ≤ column
+  std::array<int, 10> at{};            ///< first entry of each block in `values` (column-major)
+  std::array<double, kCapacity> values;  ///< uninitialised until filled
+  StencilHessian() {}  // leaves `values` uninitialised: a chunk of them is scratch space
+  /// Adds every block to H.
+  void add_to(BlockHessian& H) const;
+};
+
 /// The linear map from the DOF blocks of a stencil's vertices to its packed vertex positions.
 struct StencilJacobian {
   std::array<int, 4> block{-1, -1, -1, -1};   ///< DOF block of each slot
@@ -30,6 +45,8 @@ struct StencilJacobian {
 
   /// Adds Jᵀ g_x to the global gradient g.
   void scatter_gradient(const Eigen::Matrix<double, 12, 1>& g_x, Eigen::VectorXd& g) const;
+  /// Jᵀ H_x J by pairs of DOF blocks, into `out`.
+  void block_hessians(const Eigen::Matrix<double, 12, 12>& H_x, StencilHessian& out) const;
   /// Adds Jᵀ H_x J to the global Hessian.
   void scatter_hessian(const Eigen::Matrix<double, 12, 12>& H_x, BlockHessian& H) const;
 };

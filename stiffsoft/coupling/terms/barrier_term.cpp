@@ -67,18 +67,17 @@ void BarrierTerm::add_gradient(const Configuration& c, Eigen::VectorXd& g) const
 }
 
 void BarrierTerm::add_hessian(const Configuration& c, BlockHessian& H) const {
-  // The stencils' Hessians (the projected ones' 12×12 eigen-decompositions dominate) run in
-  // parallel, the scatter serially.
-  assemble_in_chunks<contact::Matrix12d>(
+  // The stencils' Hessians (their projections dominate) and their Jᵀ H J blocks run in
+  // parallel; adding the blocks to H is serial.
+  assemble_in_chunks<StencilHessian>(
       m_constraints.size(),
-      [&](size_t k, contact::Matrix12d& out) {
+      [&](size_t k, StencilHessian& out) {
         const ContactConstraint& s = m_constraints[k];
-        out = m_kappa * s.weight *
-              contact::barrier_newton_hessian(s.stencil, gather(c.x, s.vertices), m_settings.dhat, m_settings.hessian);
+        const contact::Matrix12d H_x = m_kappa * s.weight *
+            contact::barrier_newton_hessian(s.stencil, gather(c.x, s.vertices), m_settings.dhat, m_settings.hessian);
+        StencilJacobian(m_model, s.vertices).block_hessians(H_x, out);
       },
-      [&](size_t k, const contact::Matrix12d& out) {
-        StencilJacobian(m_model, m_constraints[k].vertices).scatter_hessian(out, H);
-      });
+      [&](size_t, const StencilHessian& out) { out.add_to(H); });
 }
 
 double BarrierTerm::max_step(const Configuration& c, const Eigen::VectorXd&, const Eigen::MatrixX3d& dx) const {

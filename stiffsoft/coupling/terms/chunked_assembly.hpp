@@ -19,7 +19,7 @@ namespace stiffsoft {
 /// to the global quantity, serially and in increasing k.
 template <class Local, class Compute, class Add>
 void assemble_in_chunks(std::size_t n, const Compute& compute, const Add& add) {
-  constexpr std::size_t kChunk = 128;  // 128 12×12 Hessians: 144 KiB, resident in L2
+  constexpr std::size_t kChunk = 128;  // 128 12×12 Hessians: 144 KiB; 128 StencilHessians: 450 KiB
   std::vector<Local> local(std::min(n, kChunk));
   for (std::size_t begin = 0; begin < n; begin += kChunk) {
     const std::size_t end = std::min(n, begin + kChunk);

@@ -40,12 +40,13 @@ void FrictionTerm::add_gradient(const Configuration& c, Eigen::VectorXd& g) cons
 }
 
 void FrictionTerm::add_hessian(const Configuration& c, BlockHessian& H) const {
-  assemble_in_chunks<contact::Matrix12d>(
+  assemble_in_chunks<StencilHessian>(
       m_stencils.size(),
-      [&](size_t k, contact::Matrix12d& out) {
-        out = contact::friction_potential_hessian(m_stencils[k], displacement(c, k), m_mu, m_epsv_h, true);
+      [&](size_t k, StencilHessian& out) {
+        StencilJacobian(m_model, m_vertices[k])
+            .block_hessians(contact::friction_potential_hessian(m_stencils[k], displacement(c, k), m_mu, m_epsv_h, true), out);
       },
-      [&](size_t k, const contact::Matrix12d& out) { StencilJacobian(m_model, m_vertices[k]).scatter_hessian(out, H); });
+      [&](size_t, const StencilHessian& out) { out.add_to(H); });
 }
 
 bool FrictionTerm::revise_hessian(const Configuration& c, const Eigen::VectorXd&, const Eigen::MatrixX3d& dx,
