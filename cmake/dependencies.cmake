@@ -11,6 +11,8 @@ find_package(VTK REQUIRED COMPONENTS IOXML CommonCore CommonDataModel
   RenderingCore RenderingOpenGL2 RenderingFreeType RenderingAnnotation InteractionStyle
   FiltersGeometry FiltersSources FiltersCore ImagingCore IOImage)
 find_package(MPI REQUIRED COMPONENTS C CXX)
+# zlib compresses the frames (stiffsoft/io/vtu_text.hpp), as VTK would.
+find_package(ZLIB REQUIRED)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(PETSC REQUIRED IMPORTED_TARGET PETSc)
 

@@ -7,7 +7,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libsuitesparse-dev petsc-dev libgmsh-dev libcgal-dev libvtk9-dev
-  libtbb-dev nlohmann-json3-dev libcli11-dev libspdlog-dev googletest libgtest-dev
+  libtbb-dev zlib1g-dev nlohmann-json3-dev libcli11-dev libspdlog-dev googletest libgtest-dev
   python3-matplotlib python3-numpy python3-dev python3-pytest pybind11-dev mypy
   xvfb xauth libgl1-mesa-dri
   "$@"

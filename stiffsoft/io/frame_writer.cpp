@@ -1,34 +1,22 @@
 #include <stiffsoft/io/frame_writer.hpp>
 
-#include <vtkCellArray.h>
-#include <vtkCellData.h>
 #include <vtkCellType.h>
-#include <vtkCommand.h>
-#include <vtkDoubleArray.h>
-#include <vtkFieldData.h>
-#include <vtkIdTypeArray.h>
-#include <vtkNew.h>
-#include <vtkPointData.h>
-#include <vtkPoints.h>
-#include <vtkSmartPointer.h>
-#include <vtkStringArray.h>
-#include <vtkUnsignedCharArray.h>
-#include <vtkUnstructuredGrid.h>
-#include <vtkXMLUnstructuredGridWriter.h>
 
 #include <cctype>
 #include <charconv>
+#include <cstdint>
 #include <cstdio>
 #include <stdexcept>
 #include <system_error>
+#include <utility>
+#include <vector>
 
 #include <stiffsoft/io/atomic_file.hpp>
-#include <stiffsoft/io/vtk_error_catcher.hpp>
+#include <stiffsoft/io/vtu_text.hpp>
 
 namespace stiffsoft {
 
 namespace {
-
 
 /// Shortest text that reads back to exactly the same double.
 std::string format_double(double v) {
@@ -88,98 +76,50 @@ void check_shapes(const BodyFrame& body) {
   }
 }
 
-/// |V|×3 Eigen (column-major) → VTK tuple array (row-major); zeros when `a` is empty.
-vtkSmartPointer<vtkDoubleArray> to_vtk_vectors(const Eigen::MatrixX3d& a, Eigen::Index n,
-                                               const char* name) {
-  auto array = vtkSmartPointer<vtkDoubleArray>::New();
-  array->SetName(name);
-  array->SetNumberOfComponents(3);
-  array->SetNumberOfTuples(n);
-  double* data = array->GetPointer(0);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    for (int k = 0; k < 3; ++k) data[3 * i + k] = a.size() == 0 ? 0.0 : a(i, k);
-  }
-  return array;
+/// |V|×3 Eigen (column-major) → x, y, z of each row in turn; zeros when `a` is empty.
+std::vector<double> row_major(const Eigen::MatrixX3d& a, Eigen::Index n) {
+  std::vector<double> out(std::size_t(3 * n), 0.0);
+  if (a.size() == 0) return out;
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) out[std::size_t(3 * i + k)] = a(i, k);
+  return out;
 }
 
-vtkSmartPointer<vtkUnstructuredGrid> to_vtk_grid(double time, const BodyFrame& body) {
-  const Eigen::Index n = body.x.rows();
-  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
-
-  vtkNew<vtkPoints> points;
-  points->SetData(to_vtk_vectors(body.x, n, "Points"));
-  grid->SetPoints(points);
-
-  // Offsets/connectivity built in one pass instead of InsertNextCell per cell: tets, then triangles.
-  const Eigen::Index nt = body.T.rows(), m = body.F.rows();
-  vtkNew<vtkIdTypeArray> offsets;
-  offsets->SetNumberOfValues(nt + m + 1);
-  vtkNew<vtkIdTypeArray> connectivity;
-  connectivity->SetNumberOfValues(4 * nt + 3 * m);
-  vtkNew<vtkUnsignedCharArray> types;
-  types->SetNumberOfValues(nt + m);
-  vtkIdType at = 0;
+/// The body's .vtu: tetrahedra, then triangles; point, cell and field data.
+std::string vtu_text(double time, const BodyFrame& body) {
+  const Eigen::Index n = body.x.rows(), nt = body.T.rows(), m = body.F.rows();
+  VtuText vtu(n, nt + m);
+  vtu.add_field("time", time);
+  vtu.add_field("body", body.name);
+  vtu.add_field("model", body.model);
+  for (const auto& [array, name] : {std::pair{&body.velocity, "velocity"}, {&body.displacement, "displacement"},
+                                    {&body.contact_force, "contact_force"}, {&body.friction_force, "friction_force"}})
+    vtu.add_point_vectors(name, row_major(*array, n).data());
+  if (body.von_mises.size() != 0) vtu.add_cell_scalars("von_mises", body.von_mises.data());
+  vtu.set_points(row_major(body.x, n).data());
+  std::vector<std::int64_t> connectivity;
+  connectivity.reserve(std::size_t(4 * nt + 3 * m));
+  std::vector<std::int64_t> ends;
+  ends.reserve(std::size_t(nt + m));
+  std::vector<std::uint8_t> types(std::size_t(nt), VTK_TETRA);
+  types.resize(std::size_t(nt + m), VTK_TRIANGLE);
   for (Eigen::Index t = 0; t < nt; ++t) {
-    offsets->SetValue(t, at);
-    types->SetValue(t, VTK_TETRA);
-    for (int k = 0; k < 4; ++k) connectivity->SetValue(at++, body.T(t, k));
+    for (int k = 0; k < 4; ++k) connectivity.push_back(body.T(t, k));
+    ends.push_back(std::int64_t(connectivity.size()));
   }
   for (Eigen::Index f = 0; f < m; ++f) {
-    offsets->SetValue(nt + f, at);
-    types->SetValue(nt + f, VTK_TRIANGLE);
-    for (int k = 0; k < 3; ++k) connectivity->SetValue(at++, body.F(f, k));
+    for (int k = 0; k < 3; ++k) connectivity.push_back(body.F(f, k));
+    ends.push_back(std::int64_t(connectivity.size()));
   }
-  offsets->SetValue(nt + m, at);
-  vtkNew<vtkCellArray> cells;
-  cells->SetData(offsets, connectivity);
-  grid->SetCells(types, cells);
-  if (body.von_mises.size() != 0) {
-    vtkNew<vtkDoubleArray> stress;
-    stress->SetName("von_mises");
-    stress->SetNumberOfValues(body.von_mises.size());
-    for (Eigen::Index c = 0; c < body.von_mises.size(); ++c) stress->SetValue(c, body.von_mises[c]);
-    grid->GetCellData()->AddArray(stress);
-  }
-
-  vtkPointData* point_data = grid->GetPointData();
-  point_data->AddArray(to_vtk_vectors(body.velocity, n, "velocity"));
-  point_data->AddArray(to_vtk_vectors(body.displacement, n, "displacement"));
-  point_data->AddArray(to_vtk_vectors(body.contact_force, n, "contact_force"));
-  point_data->AddArray(to_vtk_vectors(body.friction_force, n, "friction_force"));
-
-  vtkNew<vtkDoubleArray> time_array;
-  time_array->SetName("time");
-  time_array->InsertNextValue(time);
-  vtkNew<vtkStringArray> body_array;
-  body_array->SetName("body");
-  body_array->InsertNextValue(body.name);
-  vtkNew<vtkStringArray> model_array;
-  model_array->SetName("model");
-  model_array->InsertNextValue(body.model);
-  grid->GetFieldData()->AddArray(time_array);
-  grid->GetFieldData()->AddArray(body_array);
-  grid->GetFieldData()->AddArray(model_array);
-  return grid;
+  vtu.set_cells(connectivity.data(), ends.data(), types.data());
+  return vtu.str();
 }
 
-/// Serializes through VTK into memory, then writes atomically, so a partial .vtu never exists
-/// under its final name and I/O errors surface in one place.
+/// Serializes into memory, then writes atomically, so a partial .vtu never exists under its
+/// final name and I/O errors surface in one place.
 void write_vtu(const std::filesystem::path& path, double time, const BodyFrame& body) {
-  const auto grid = to_vtk_grid(time, body);
-  vtkNew<vtkXMLUnstructuredGridWriter> writer;
-  vtkNew<VtkErrorCatcher> errors;
-  writer->AddObserver(vtkCommand::ErrorEvent, errors);
-  writer->SetInputData(grid);
-  writer->SetDataModeToAppended();
-  writer->EncodeAppendedDataOff();  // raw binary, not base64
-  writer->SetCompressorTypeToZLib();
-  writer->SetHeaderTypeToUInt64();  // no 4 GiB limit per array
-  writer->WriteToOutputStringOn();
-  if (writer->Write() != 1 || errors->failed) {
-    throw std::runtime_error("cannot write '" + path.string() + "': VTK: " + errors->message);
-  }
-  const std::string text = writer->GetOutputString();
-  write_file_atomically(path, [&](std::ostream& out) { out.write(text.data(), text.size()); });
+  const std::string text = vtu_text(time, body);
+  write_file_atomically(path, [&](std::ostream& out) { out.write(text.data(), std::streamsize(text.size())); });
 }
 
 }  // namespace
