@@ -45,6 +45,13 @@ class Deflater {
 
 void append_uint64(std::string& out, std::uint64_t v) { out.append(reinterpret_cast<const char*>(&v), sizeof v); }
 
+/// The XML element of an array whose data is appended at `offset`.
+std::string array_tag(const char* element, const char* type, const std::string& name, const std::string& extra,
+                      std::size_t offset) {
+  return std::string("<") + element + " type=\"" + type + "\" Name=\"" + name + "\"" + extra +
+         " format=\"appended\" offset=\"" + std::to_string(offset) + "\"/>\n";
+}
+
 }  // namespace
 
 VtuText::VtuText(std::int64_t points, std::int64_t cells) : m_points(points), m_cells(cells) {}
@@ -64,12 +71,6 @@ std::size_t VtuText::append(const void* data, std::size_t bytes) {
     std::memcpy(m_appended.data() + sizes_at + b * sizeof size, &size, sizeof size);
   }
   return offset;
-}
-
-std::string VtuText::array_tag(const char* element, const char* type, const std::string& name,
-                               const std::string& extra, std::size_t offset) const {
-  return std::string("<") + element + " type=\"" + type + "\" Name=\"" + name + "\"" + extra +
-         " format=\"appended\" offset=\"" + std::to_string(offset) + "\"/>\n";
 }
 
 void VtuText::add_field(const std::string& name, double value) {

@@ -38,9 +38,6 @@ class VtuText {
  private:
   /// Appends `bytes` bytes compressed and returns the offset they start at.
   std::size_t append(const void* data, std::size_t bytes);
-  /// The XML element of an appended array.
-  std::string array_tag(const char* element, const char* type, const std::string& name,
-                        const std::string& extra, std::size_t offset) const;
 
   std::int64_t m_points, m_cells;
   std::string m_field, m_point_data, m_cell_data, m_points_tag, m_cells_tags;
