@@ -1,9 +1,10 @@
 #include <stiffsoft/coupling/contact/broad_phase.hpp>
 
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+
+#include <stiffsoft/coupling/contact/ordered_chunks.hpp>
 
 namespace stiffsoft {
 
@@ -33,23 +34,20 @@ PrimitiveBoxes primitive_boxes(const CollisionMesh& mesh, const Eigen::MatrixX3d
                                const Eigen::MatrixX3d& x1, double inflation) {
   PrimitiveBoxes boxes;
   boxes.vertex.resize(x0.rows());
-  for (Eigen::Index v = 0; v < x0.rows(); ++v) {
+  tbb::parallel_for(Eigen::Index(0), x0.rows(), [&](Eigen::Index v) {
     const Eigen::Array3d a = x0.row(v).transpose().array(), b = x1.row(v).transpose().array();
     boxes.vertex[v] = {a.min(b) - inflation, a.max(b) + inflation};
-  }
+  });
+  // The box of primitive k (a row of F or E) spans its vertices' boxes.
+  const auto spanned = [&](const auto& primitives, Eigen::Index k, std::vector<Box>& out) {
+    Box box = boxes.vertex[primitives(k, 0)];
+    for (Eigen::Index i = 1; i < primitives.cols(); ++i) box.extend(boxes.vertex[primitives(k, i)]);
+    out[k] = box;
+  };
   boxes.face.resize(mesh.F.rows());
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-    Box box = boxes.vertex[mesh.F(f, 0)];
-    box.extend(boxes.vertex[mesh.F(f, 1)]);
-    box.extend(boxes.vertex[mesh.F(f, 2)]);
-    boxes.face[f] = box;
-  }
+  tbb::parallel_for(Eigen::Index(0), mesh.F.rows(), [&](Eigen::Index f) { spanned(mesh.F, f, boxes.face); });
   boxes.edge.resize(mesh.E.rows());
-  for (Eigen::Index e = 0; e < mesh.E.rows(); ++e) {
-    Box box = boxes.vertex[mesh.E(e, 0)];
-    box.extend(boxes.vertex[mesh.E(e, 1)]);
-    boxes.edge[e] = box;
-  }
+  tbb::parallel_for(Eigen::Index(0), mesh.E.rows(), [&](Eigen::Index e) { spanned(mesh.E, e, boxes.edge); });
   return boxes;
 }
 
@@ -115,15 +113,14 @@ Candidates broad_phase(const Model& model, const Eigen::MatrixX3d& x0, const Eig
   for (int b = 0; b < nb; ++b)
     if (model.bodies[b].self_contact()) body_pairs.push_back({b, b});
 
-  tbb::enumerable_thread_specific<Candidates> local;
-  tbb::parallel_for(size_t(0), body_pairs.size(), [&](size_t k) {
+  // Primitive pairs of a few body pairs per task, gathered in body-pair order.
+  const auto fill = [&](std::size_t k, Candidates& out) {
     const auto [a, b] = body_pairs[k];
     const BodyModel& A = model.bodies[a];
     const BodyModel& B = model.bodies[b];
     const Box region = body_box[a].intersection(body_box[b]);
     int axis;
     (region.hi - region.lo).maxCoeff(&axis);
-    Candidates& out = local.local();
     const auto va = inside(boxes.vertex, A.vertex_begin, A.vertex_end, region, axis);
     const auto vb = inside(boxes.vertex, B.vertex_begin, B.vertex_end, region, axis);
     const auto fa = inside(boxes.face, A.face_begin, A.face_end, region, axis);
@@ -146,15 +143,9 @@ Candidates broad_phase(const Model& model, const Eigen::MatrixX3d& x0, const Eig
     sweep(vb, boxes.vertex, fa, boxes.face, [&](int v, int f) { out.vertex_face.push_back({v, f}); });
     sweep(ea, boxes.edge, eb, boxes.edge,
           [&](int e, int g) { out.edge_edge.push_back({std::min(e, g), std::max(e, g)}); });
-  });
+  };
   Candidates all;
-  for (const Candidates& c : local) {
-    all.vertex_face.insert(all.vertex_face.end(), c.vertex_face.begin(), c.vertex_face.end());
-    all.edge_edge.insert(all.edge_edge.end(), c.edge_edge.begin(), c.edge_edge.end());
-  }
-  // Deterministic order whatever the thread schedule.
-  std::sort(all.vertex_face.begin(), all.vertex_face.end());
-  std::sort(all.edge_edge.begin(), all.edge_edge.end());
+  in_ordered_chunks<Candidates>(body_pairs.size(), 8, fill, [&](const Candidates& part) { all.append(part); });
   return all;
 }
 

@@ -1,5 +1,7 @@
 #include <stiffsoft/coupling/contact/swept_candidates.hpp>
 
+#include <stiffsoft/coupling/contact/ordered_chunks.hpp>
+
 namespace stiffsoft {
 
 SweptCandidates::SweptCandidates(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
@@ -31,13 +33,22 @@ Candidates SweptCandidates::for_ccd(const Model& model) const {
     }
     return (alo <= bhi).all() && (blo <= ahi).all();
   };
+  using Pairs = std::vector<std::array<int, 2>>;
+  // The pairs of `from` that pass, in their order.
+  const auto kept = [](const Pairs& from, const auto& passes) {
+    Pairs to;
+    in_ordered_chunks<Pairs>(
+        from.size(), 1024, [&](std::size_t k, Pairs& part) { if (passes(from[k])) part.push_back(from[k]); },
+        [&](const Pairs& part) { to.insert(to.end(), part.begin(), part.end()); });
+    return to;
+  };
   Candidates out;
-  for (const auto& [v, f] : m_all.vertex_face)
-    if (overlap([v = v](int) { return v; }, 1, [&, f = f](int i) { return mesh.F(f, i); }, 3))
-      out.vertex_face.push_back({v, f});
-  for (const auto& [ea, eb] : m_all.edge_edge)
-    if (overlap([&, ea = ea](int i) { return mesh.E(ea, i); }, 2, [&, eb = eb](int i) { return mesh.E(eb, i); }, 2))
-      out.edge_edge.push_back({ea, eb});
+  out.vertex_face = kept(m_all.vertex_face, [&](const std::array<int, 2>& vf) {
+    return overlap([v = vf[0]](int) { return v; }, 1, [&, f = vf[1]](int i) { return mesh.F(f, i); }, 3);
+  });
+  out.edge_edge = kept(m_all.edge_edge, [&](const std::array<int, 2>& ee) {
+    return overlap([&, a = ee[0]](int i) { return mesh.E(a, i); }, 2, [&, b = ee[1]](int i) { return mesh.E(b, i); }, 2);
+  });
   return out;
 }
 

@@ -1,5 +1,6 @@
 #include <stiffsoft/coupling/terms/barrier_term.hpp>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
@@ -89,40 +90,33 @@ double BarrierTerm::max_step(const Configuration& c, const Eigen::VectorXd&, con
   const Candidates candidates = m_swept->for_ccd(m_model);
   const CollisionMesh& mesh = m_model.mesh;
   const auto row = [](const Eigen::MatrixX3d& m, int i) -> Eigen::Vector3d { return m.row(i).transpose(); };
-  // Each chunk bounds its queries by the smallest time found so far (t_max = α), and the time
-  // ACCD returns depends on that bound; a deterministic reduction splits the work the same
-  // way whatever the thread schedule, so the step bound, and the run, are reproducible.
-  const double alpha_vf = tbb::parallel_deterministic_reduce(
-      tbb::blocked_range<size_t>(0, candidates.vertex_face.size()), 1.0,
-      [&](const tbb::blocked_range<size_t>& r, double alpha) {
-        ccd::CcdSettings s;
-        for (size_t k = r.begin(); k < r.end() && alpha > 0; ++k) {  // α = 0: nothing can lower it
-          const auto [v, f] = candidates.vertex_face[k];
-          s.t_max = alpha;
-          alpha = std::min(alpha, ccd::point_triangle_toi(
-                                      row(c.x, v), row(c.x, mesh.F(f, 0)), row(c.x, mesh.F(f, 1)),
-                                      row(c.x, mesh.F(f, 2)), row(x1, v), row(x1, mesh.F(f, 0)),
-                                      row(x1, mesh.F(f, 1)), row(x1, mesh.F(f, 2)), s));
-        }
-        return alpha;
-      },
-      [](double a, double b) { return std::min(a, b); });
-  const double alpha_ee = tbb::parallel_deterministic_reduce(
-      tbb::blocked_range<size_t>(0, candidates.edge_edge.size()), alpha_vf,
-      [&](const tbb::blocked_range<size_t>& r, double alpha) {
-        ccd::CcdSettings s;
-        for (size_t k = r.begin(); k < r.end() && alpha > 0; ++k) {
-          const auto [ea, eb] = candidates.edge_edge[k];
-          s.t_max = alpha;
-          alpha = std::min(alpha, ccd::edge_edge_toi(
-                                      row(c.x, mesh.E(ea, 0)), row(c.x, mesh.E(ea, 1)),
-                                      row(c.x, mesh.E(eb, 0)), row(c.x, mesh.E(eb, 1)),
-                                      row(x1, mesh.E(ea, 0)), row(x1, mesh.E(ea, 1)),
-                                      row(x1, mesh.E(eb, 0)), row(x1, mesh.E(eb, 1)), s));
-        }
-        return alpha;
-      },
-      [](double a, double b) { return std::min(a, b); });
+  // Every query is bounded by the same t_max (1 for the point–triangle pairs, then their
+  // minimum for the edge–edge pairs), never by a time another query found: the time ACCD
+  // returns depends on its bound, so the step bound is then the same whatever the thread
+  // count and the split of the work (and min is exact in any order).
+  const auto smallest_time = [&](std::size_t count, double t_max, const auto& time_of) {
+    return tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, count, 256), t_max,
+        [&](const tbb::blocked_range<std::size_t>& r, double alpha) {
+          ccd::CcdSettings s;
+          s.t_max = t_max;
+          for (std::size_t k = r.begin(); k < r.end() && alpha > 0; ++k)  // α = 0: nothing can lower it
+            alpha = std::min(alpha, time_of(k, s));
+          return alpha;
+        },
+        [](double a, double b) { return std::min(a, b); });
+  };
+  const double alpha_vf = smallest_time(candidates.vertex_face.size(), 1.0, [&](std::size_t k, const ccd::CcdSettings& s) {
+    const auto [v, f] = candidates.vertex_face[k];
+    return ccd::point_triangle_toi(row(c.x, v), row(c.x, mesh.F(f, 0)), row(c.x, mesh.F(f, 1)), row(c.x, mesh.F(f, 2)),
+                                   row(x1, v), row(x1, mesh.F(f, 0)), row(x1, mesh.F(f, 1)), row(x1, mesh.F(f, 2)), s);
+  });
+  const double alpha_ee = smallest_time(candidates.edge_edge.size(), alpha_vf, [&](std::size_t k, const ccd::CcdSettings& s) {
+    const auto [ea, eb] = candidates.edge_edge[k];
+    return ccd::edge_edge_toi(row(c.x, mesh.E(ea, 0)), row(c.x, mesh.E(ea, 1)), row(c.x, mesh.E(eb, 0)),
+                              row(c.x, mesh.E(eb, 1)), row(x1, mesh.E(ea, 0)), row(x1, mesh.E(ea, 1)),
+                              row(x1, mesh.E(eb, 0)), row(x1, mesh.E(eb, 1)), s);
+  });
   return alpha_ee;
 }
 

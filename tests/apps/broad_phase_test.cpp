@@ -1,0 +1,110 @@
+/// @file The broad phase's candidates: every pair closer than d̂ is one of them, and the list,
+/// order included, is the same whatever the thread count.
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <array>
+#include <set>
+#include <stiffsoft/coupling/contact/broad_phase.hpp>
+#include <stiffsoft/coupling/contact/distance_classification.hpp>
+#include <stiffsoft/coupling/contact/ordered_chunks.hpp>
+
+#include "scene_helpers.hpp"
+
+namespace stiffsoft {
+namespace {
+
+/// Boxes and a sphere a few millimetres apart, turned, over a fixed floor (d̂ = 1 cm).
+constexpr const char* kHeap = R"({
+  "description": "broad-phase test heap",
+  "time": {"dt": 0.01, "duration": 0.01},
+  "contact": {"dhat": 0.01, "check_start_gaps": false},
+  "bodies": [
+    {"name": "floor", "kind": "fixed", "mesh": {"primitive": "box", "size": [2.0, 0.1, 2.0]}, "position": [0.0, -0.05, 0.0]},
+    {"name": "a", "mesh": {"primitive": "box", "size": [0.3, 0.2, 0.4]}, "density": 1000.0,
+     "position": [0.0, 0.105, 0.0], "rotation_deg": [0.0, 10.0, 0.0]},
+    {"name": "b", "mesh": {"primitive": "box", "size": [0.3, 0.2, 0.3]}, "density": 1000.0,
+     "position": [0.05, 0.318, 0.02], "rotation_deg": [3.0, 40.0, 0.0]},
+    {"name": "c", "mesh": {"primitive": "box", "size": [0.2, 0.2, 0.2]}, "density": 1000.0,
+     "position": [0.29, 0.106, 0.0], "rotation_deg": [0.0, 0.0, 0.0]},
+    {"name": "d", "mesh": {"primitive": "sphere", "radius": 0.1, "resolution": 8}, "density": 1000.0,
+     "position": [-0.05, 0.531, 0.0]}
+  ]
+})";
+
+Candidates candidates_with(int threads, const Model& model, const Eigen::MatrixX3d& x, double inflation) {
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+  return broad_phase(model, x, x, inflation);
+}
+
+TEST(BroadPhase, SameCandidatesInTheSameOrderWhateverTheThreadCount) {
+  const PreparedScene p =
+      prepare_scene(load_scene_from_string(kHeap, STIFFSOFT_SOURCE_DIR, "heap.json", "heap"), "heap.json");
+  const Eigen::MatrixX3d x = p.model.surface(p.model.initial_q());
+  const Candidates one = candidates_with(1, p.model, x, 0.005);
+  const Candidates two = candidates_with(2, p.model, x, 0.005);
+  EXPECT_GT(one.vertex_face.size(), 0u);
+  EXPECT_GT(one.edge_edge.size(), 0u);
+  EXPECT_EQ(one.vertex_face, two.vertex_face);
+  EXPECT_EQ(one.edge_edge, two.edge_edge);
+}
+
+TEST(BroadPhase, HoldsEveryPairCloserThanDhat) {
+  const PreparedScene p =
+      prepare_scene(load_scene_from_string(kHeap, STIFFSOFT_SOURCE_DIR, "heap.json", "heap"), "heap.json");
+  const Model& model = p.model;
+  const CollisionMesh& mesh = model.mesh;
+  const double dhat = 0.01;
+  const Eigen::MatrixX3d x = model.surface(model.initial_q());
+  const Candidates found = broad_phase(model, x, x, dhat / 2);
+  const std::set<std::array<int, 2>> vf(found.vertex_face.begin(), found.vertex_face.end());
+  const std::set<std::array<int, 2>> ee(found.edge_edge.begin(), found.edge_edge.end());
+  EXPECT_EQ(vf.size(), found.vertex_face.size()) << "a vertex–face pair is listed twice";
+  EXPECT_EQ(ee.size(), found.edge_edge.size()) << "an edge–edge pair is listed twice";
+  const auto row = [&](int v) -> Eigen::Vector3d { return x.row(v).transpose(); };
+  const auto moving = [&](int b) { return model.bodies[b].dof >= 0; };
+  int close = 0;
+  for (int v = 0; v < int(x.rows()); ++v)
+    for (int f = 0; f < int(mesh.F.rows()); ++f) {
+      const int bv = mesh.vertex_body[v], bf = mesh.face_body[f];
+      if (bv == bf || (!moving(bv) && !moving(bf))) continue;
+      const double d2 = contact::point_triangle_squared_distance(row(v), row(mesh.F(f, 0)), row(mesh.F(f, 1)),
+                                                                 row(mesh.F(f, 2)));
+      if (d2 >= dhat * dhat) continue;
+      ++close;
+      EXPECT_TRUE(vf.count({v, f})) << "vertex " << v << ", face " << f << " at " << std::sqrt(d2) << " m";
+    }
+  for (int e = 0; e < int(mesh.E.rows()); ++e)
+    for (int g = e + 1; g < int(mesh.E.rows()); ++g) {
+      const int be = mesh.edge_body[e], bg = mesh.edge_body[g];
+      if (be == bg || (!moving(be) && !moving(bg))) continue;
+      const double d2 = contact::segment_segment_squared_distance(row(mesh.E(e, 0)), row(mesh.E(e, 1)),
+                                                                  row(mesh.E(g, 0)), row(mesh.E(g, 1)));
+      if (d2 >= dhat * dhat) continue;
+      ++close;
+      EXPECT_TRUE(ee.count({e, g})) << "edges " << e << ", " << g << " at " << std::sqrt(d2) << " m";
+    }
+  EXPECT_GT(close, 20) << "the heap should have pairs closer than d̂";
+}
+
+TEST(InOrderedChunks, GathersInItemOrderWhateverTheThreadCount) {
+  for (int threads : {1, 2}) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    std::vector<int> out;
+    in_ordered_chunks<std::vector<int>>(
+        1003, 7,
+        [](std::size_t i, std::vector<int>& part) {
+          if (i % 3) part.push_back(int(i));
+        },
+        [&](const std::vector<int>& part) { out.insert(out.end(), part.begin(), part.end()); });
+    std::vector<int> serial;
+    for (int i = 0; i < 1003; ++i)
+      if (i % 3) serial.push_back(i);
+    EXPECT_EQ(out, serial) << threads << " threads";
+  }
+}
+
+}  // namespace
+}  // namespace stiffsoft
