@@ -197,6 +197,7 @@ const std::vector<std::string> kBackends{"cholmod",
                                          "petsc:minres:jacobi",
                                          "petsc:gmres:icc",
                                          "petsc",
+                                         "block_cholesky",
                                          "auto"};
 
 TEST(LinearSolver, EveryBackendSolvesTheStoredSystemsToTheRequestedResidual) {
@@ -395,7 +396,7 @@ TEST(LinearSolver, FactoryNamesTheAvailableBackendsForAnUnknownOne) {
     EXPECT_NE(std::string(e.what()).find("cholmod"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("petsc:KSP"), std::string::npos) << e.what();
   }
-  for (const char* good : {"cholmod", "auto", "petsc", "petsc:cg", "petsc:minres:jacobi", "petsc:cg:hypre"})
+  for (const char* good : {"cholmod", "block_cholesky", "auto", "petsc", "petsc:cg", "petsc:minres:jacobi", "petsc:cg:hypre"})
     EXPECT_NO_THROW(check_linear_solver_name(good)) << good;
   for (const char* bad : {"lu", "petsc:", "petsc:cg:", "petsc:bicg", "petsc:cg:ilu", "petsc:cg:icc:x"})
     EXPECT_THROW(check_linear_solver_name(bad), std::invalid_argument) << bad;
@@ -464,6 +465,25 @@ TEST(AutoSolver, TakesCholmodWhenItsFactorisationIsCheapAndPetscOtherwise) {
     EXPECT_TRUE(solver.is_iterative());
     EXPECT_TRUE(solver.last_report().converged());
     EXPECT_LE((b - large.selfadjointView<Eigen::Upper>() * p).norm() / b.norm(), 1e-9);
+  }
+}
+
+TEST(AutoSolver, TakesTheBlockCholeskyWhenEveryBlockIsAnAffineBody) {
+  // house_of_cards: 15 cards, 180 rows. As affine bodies (12-blocks) → block Cholesky; as
+  // 3-blocks (soft nodes) or without blocks → CHOLMOD. All three solve to round-off.
+  const LinearSystem s = load_linear_system(kDataDir, kSystems[1]);
+  const int rows = int(s.upper.rows());
+  for (const auto& [sizes, expected] : std::vector<std::pair<std::vector<int>, std::string>>{
+           {std::vector<int>(rows / 12, 12), "auto→block_cholesky"},
+           {std::vector<int>(rows / 3, 3), "auto→cholmod"},
+           {{}, "auto→cholmod"}}) {
+    AutoSolver solver;
+    solver.set_block_sizes(sizes);
+    solver.analyze_pattern(s.upper);
+    ASSERT_TRUE(solver.factorize(s.upper));
+    EXPECT_LE(relative_residual(s, solver.solve(s.b)), 1e-10);
+    EXPECT_EQ(solver.name(), expected);
+    EXPECT_FALSE(solver.is_iterative());
   }
 }
 

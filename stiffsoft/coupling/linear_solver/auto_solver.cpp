@@ -1,8 +1,11 @@
 #include <stiffsoft/coupling/linear_solver/auto_solver.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
 
+#include <stiffsoft/coupling/linear_solver/block_cholesky_solver.hpp>
 #include <stiffsoft/coupling/linear_solver/cholmod_solver.hpp>
 #include <stiffsoft/coupling/linear_solver/petsc_solver.hpp>
 
@@ -21,12 +24,26 @@ void AutoSolver::analyze_pattern(const Eigen::SparseMatrix<double>& upper) {
   }
   m_decided_nonzeros = nonzeros;
   if (upper.rows() < kAutoKrylovRows) {
-    auto cholmod = std::make_unique<CholmodSolver>();
-    cholmod->analyze_pattern(upper);
-    if (cholmod->factor_flops() <= kAutoCholmodFlops) {
-      m_backend = std::move(cholmod);  // analysed already
-      m_krylov = false;
-      return;
+    const bool affine_bodies_only =
+        !m_block_sizes.empty() && std::accumulate(m_block_sizes.begin(), m_block_sizes.end(), 0) == upper.rows() &&
+        std::all_of(m_block_sizes.begin(), m_block_sizes.end(), [](int s) { return s == 12; });
+    if (affine_bodies_only) {
+      auto blocks = std::make_unique<BlockCholeskySolver>();
+      blocks->set_block_sizes(m_block_sizes);
+      blocks->analyze_pattern(upper);
+      if (blocks->factor_flops() <= kAutoCholmodFlops) {
+        m_backend = std::move(blocks);  // analysed already
+        m_krylov = false;
+        return;
+      }
+    } else {
+      auto cholmod = std::make_unique<CholmodSolver>();
+      cholmod->analyze_pattern(upper);
+      if (cholmod->factor_flops() <= kAutoCholmodFlops) {
+        m_backend = std::move(cholmod);  // analysed already
+        m_krylov = false;
+        return;
+      }
     }
   }
   if (!m_krylov || !m_backend) {

@@ -1,6 +1,7 @@
 #pragma once
-/// @file The "auto" linear solver: CHOLMOD when its factorisation is cheap, PETSc's default
-/// Krylov method (CG with ICC(0)) otherwise, from CHOLMOD's own prediction of its cost.
+/// @file The "auto" linear solver: a direct factorisation when it is cheap (the block Cholesky
+/// for piles of affine bodies, CHOLMOD otherwise), PETSc's default Krylov method (CG with
+/// ICC(0)) when it is not, from the factorisation's own prediction of its cost.
 
 #include <memory>
 
@@ -8,9 +9,9 @@
 
 namespace stiffsoft {
 
-/// Predicted factorisation cost (CHOLMOD's symbolic analysis, cholmod_common::fl) up to which
-/// "auto" keeps CHOLMOD. From bench/linear_solver_bench (docs/benchmarks.md, "Linear
-/// solvers"): the rigid pile `medium` (0.98 Mflop) was factorised and solved by CHOLMOD in 1.3
+/// Predicted factorisation cost (the symbolic analysis' flop count: cholmod_common::fl, or
+/// BlockCholesky::flops() for affine bodies) up to which "auto" keeps a direct solver. From
+/// bench/linear_solver_bench (docs/benchmarks.md, "Linear solvers"): the rigid pile `medium` (0.98 Mflop) was factorised and solved by CHOLMOD in 1.3
 /// ms against 3.8 ms for CG + ICC(0) at η = 1e-8 (1.1 ms at 1e-3), while every system above
 /// 2.8 Mflop (hybrid and soft scenes, `full`, 3D lattices) was solved 2× to 100× faster by
 /// CG + ICC(0) than by CHOLMOD (reference BLAS, 2 busy cores).
@@ -24,10 +25,14 @@ constexpr int kAutoKrylovRows = 50000;
 /// fraction since the last decision (contacts come and go at every few Newton iterations).
 constexpr double kAutoRedecideChange = 0.25;
 
-/// Delegates to CHOLMOD or to PETSc (default_petsc_method()): below kAutoKrylovRows rows
-/// CHOLMOD analyses the pattern and is kept when it predicts at most kAutoCholmodFlops for the
-/// factorisation; otherwise PETSc. The decision is revisited at an analyze_pattern() whose
-/// number of stored entries differs by more than kAutoRedecideChange from the last decision's.
+/// Delegates to a direct solver or to PETSc (default_petsc_method()): below kAutoKrylovRows rows
+/// the block Cholesky (when every DOF block given by set_block_sizes() is an affine body's 12:
+/// its 12×12 dense blocks factorise about 2.5× faster than CHOLMOD's simplicial method,
+/// docs/benchmarks.md) or else CHOLMOD analyses the pattern and is kept when it predicts at
+/// most kAutoCholmodFlops for the factorisation (soft nodes' 3×3 blocks fill like a 3-D mesh,
+/// which CHOLMOD's supernodes and PETSc handle better); otherwise PETSc. The decision is
+/// revisited at an analyze_pattern() whose number of stored entries differs by more than
+/// kAutoRedecideChange from the last decision's.
 class AutoSolver final : public LinearSolver {
  public:
   /// Nothing chosen yet.

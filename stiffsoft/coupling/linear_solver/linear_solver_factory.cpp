@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include <stiffsoft/coupling/linear_solver/auto_solver.hpp>
+#include <stiffsoft/coupling/linear_solver/block_cholesky_solver.hpp>
 #include <stiffsoft/coupling/linear_solver/cholmod_solver.hpp>
 #include <stiffsoft/coupling/linear_solver/linear_solver.hpp>
 #include <stiffsoft/coupling/linear_solver/petsc_solver.hpp>
@@ -17,7 +18,7 @@ std::map<std::string, std::function<std::unique_ptr<LinearSolver>()>>& registry(
 }
 
 bool is_built_in(const std::string& name) {
-  return name == "cholmod" || name == "auto" || name == "petsc" || name.rfind("petsc:", 0) == 0;
+  return name == "cholmod" || name == "block_cholesky" || name == "auto" || name == "petsc" || name.rfind("petsc:", 0) == 0;
 }
 
 std::vector<std::string> split(const std::string& s, char separator) {
@@ -69,7 +70,7 @@ const char* to_string(LinearSolveStatus status) {
 }
 
 void check_linear_solver_name(const std::string& name) {
-  if (name == "cholmod" || name == "auto" || registry().count(name)) return;
+  if (name == "cholmod" || name == "block_cholesky" || name == "auto" || registry().count(name)) return;
   if (name == "petsc" || name.rfind("petsc:", 0) == 0) {
     petsc_settings(name);
     return;
@@ -79,6 +80,7 @@ void check_linear_solver_name(const std::string& name) {
 
 std::unique_ptr<LinearSolver> make_linear_solver(const std::string& name) {
   if (name == "cholmod") return std::make_unique<CholmodSolver>();
+  if (name == "block_cholesky") return std::make_unique<BlockCholeskySolver>();
   if (name == "auto") return std::make_unique<AutoSolver>();
   if (name == "petsc" || name.rfind("petsc:", 0) == 0)
     return std::make_unique<PetscSolver>(petsc_settings(name));
@@ -95,7 +97,8 @@ void register_linear_solver(const std::string& name, std::function<std::unique_p
 std::vector<std::string> linear_solver_names() {
   std::vector<std::string> names{"cholmod", "auto", "petsc",
                                  "petsc:KSP[:PC] (KSP: cg, minres, gmres; PC: none, "
-                                 "jacobi, pbjacobi, vpbjacobi, icc, gamg, hypre)"};
+                                 "jacobi, pbjacobi, vpbjacobi, icc, gamg, hypre)",
+                                 "block_cholesky"};
   for (const auto& [name, factory] : registry()) names.push_back(name);
   return names;
 }
