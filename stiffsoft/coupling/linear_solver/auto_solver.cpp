@@ -27,23 +27,24 @@ void AutoSolver::analyze_pattern(const Eigen::SparseMatrix<double>& upper) {
     const bool affine_bodies_only =
         !m_block_sizes.empty() && std::accumulate(m_block_sizes.begin(), m_block_sizes.end(), 0) == upper.rows() &&
         std::all_of(m_block_sizes.begin(), m_block_sizes.end(), [](int s) { return s == 12; });
+    std::unique_ptr<LinearSolver> direct;
+    double flops = 0;
     if (affine_bodies_only) {
       auto blocks = std::make_unique<BlockCholeskySolver>();
       blocks->set_block_sizes(m_block_sizes);
       blocks->analyze_pattern(upper);
-      if (blocks->factor_flops() <= kAutoCholmodFlops) {
-        m_backend = std::move(blocks);  // analysed already
-        m_krylov = false;
-        return;
-      }
+      flops = blocks->factor_flops();
+      direct = std::move(blocks);
     } else {
       auto cholmod = std::make_unique<CholmodSolver>();
       cholmod->analyze_pattern(upper);
-      if (cholmod->factor_flops() <= kAutoCholmodFlops) {
-        m_backend = std::move(cholmod);  // analysed already
-        m_krylov = false;
-        return;
-      }
+      flops = cholmod->factor_flops();
+      direct = std::move(cholmod);
+    }
+    if (flops <= kAutoDirectFlops) {
+      m_backend = std::move(direct);  // analysed already
+      m_krylov = false;
+      return;
     }
   }
   if (!m_krylov || !m_backend) {

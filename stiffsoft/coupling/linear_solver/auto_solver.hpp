@@ -15,7 +15,7 @@ namespace stiffsoft {
 /// ms against 3.8 ms for CG + ICC(0) at η = 1e-8 (1.1 ms at 1e-3), while every system above
 /// 2.8 Mflop (hybrid and soft scenes, `full`, 3D lattices) was solved 2× to 100× faster by
 /// CG + ICC(0) than by CHOLMOD (reference BLAS, 2 busy cores).
-constexpr double kAutoCholmodFlops = 2e6;
+constexpr double kAutoDirectFlops = 2e6;
 
 /// Rows from which "auto" takes the Krylov method without asking CHOLMOD: its analysis alone
 /// costs about as much as a Krylov solve there (81 000 rows: 1 s against 0.4–0.7 s).
@@ -29,7 +29,7 @@ constexpr double kAutoRedecideChange = 0.25;
 /// the block Cholesky (when every DOF block given by set_block_sizes() is an affine body's 12:
 /// its 12×12 dense blocks factorise about 2.5× faster than CHOLMOD's simplicial method,
 /// docs/benchmarks.md) or else CHOLMOD analyses the pattern and is kept when it predicts at
-/// most kAutoCholmodFlops for the factorisation (soft nodes' 3×3 blocks fill like a 3-D mesh,
+/// most kAutoDirectFlops for the factorisation (soft nodes' 3×3 blocks fill like a 3-D mesh,
 /// which CHOLMOD's supernodes and PETSc handle better); otherwise PETSc. The decision is
 /// revisited at an analyze_pattern() whose number of stored entries differs by more than
 /// kAutoRedecideChange from the last decision's.

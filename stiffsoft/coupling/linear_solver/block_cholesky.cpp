@@ -44,20 +44,10 @@ using Block = Eigen::Map<Eigen::Matrix<double, S, S>>;
 template <int S>
 using Segment = Eigen::Map<Eigen::Matrix<double, S, 1>>;
 
-}  // namespace
-
-void BlockCholesky::analyze(const Eigen::SparseMatrix<double>& upper, const std::vector<int>& sizes) {
-  const int n = int(upper.rows());
-  std::vector<int> offsets{0};
-  for (int s : sizes) offsets.push_back(offsets.back() + s);
-  if (upper.cols() != n || offsets.back() != n)
-    throw std::invalid_argument("BlockCholesky: DOF blocks of " + std::to_string(offsets.back()) +
-                                " DOFs for a " + std::to_string(n) + " × " + std::to_string(upper.cols()) + " matrix");
-  const int nb = int(sizes.size());
-  std::vector<int> block_of(n);
-  for (int b = 0; b < nb; ++b) std::fill(block_of.begin() + offsets[b], block_of.begin() + offsets[b + 1], b);
-
-  // The block graph, each coupled pair once.
+/// The graph of the DOF blocks: adjacent[I] holds every block J ≠ I that `upper` couples to I.
+std::vector<std::vector<int>> block_graph(const Eigen::SparseMatrix<double>& upper, const std::vector<int>& offsets,
+                                          const std::vector<int>& block_of) {
+  const int nb = int(offsets.size()) - 1;
   std::vector<std::vector<int>> adjacent(nb);
   std::vector<int> mark(nb, -1);
   for (int J = 0; J < nb; ++J)
@@ -70,8 +60,13 @@ void BlockCholesky::analyze(const Eigen::SparseMatrix<double>& upper, const std:
         adjacent[I].push_back(J);
         adjacent[J].push_back(I);
       }
+  return adjacent;
+}
 
-  // Approximate minimum degree on the block graph: order[k] is the block eliminated k-th.
+/// Approximate minimum degree (Eigen's AMD) on the block graph: order[k] is the block
+/// eliminated k-th.
+std::vector<int> minimum_degree_order(const std::vector<std::vector<int>>& adjacent) {
+  const int nb = int(adjacent.size());
   std::vector<Eigen::Triplet<double>> edges;
   for (int I = 0; I < nb; ++I) {
     edges.emplace_back(I, I, 1.0);
@@ -81,26 +76,56 @@ void BlockCholesky::analyze(const Eigen::SparseMatrix<double>& upper, const std:
   graph.setFromTriplets(edges.begin(), edges.end());
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> ordering;
   Eigen::AMDOrdering<int>()(graph, ordering);
-  std::vector<int> order(ordering.indices().data(), ordering.indices().data() + nb), position(nb);
-  for (int k = 0; k < nb; ++k) position[order[k]] = k;
+  return std::vector<int>(ordering.indices().data(), ordering.indices().data() + nb);
+}
 
-  // Block pattern of L: struct(j) = lower neighbours of j ∪ the structs of its children minus j;
-  // parent(j) = min struct(j). Heights in the elimination tree give the levels.
-  std::vector<std::vector<int>> structure(nb), children(nb);
-  std::vector<int> height(nb, 0);
+/// The block pattern of L in the elimination order and each column's height in the
+/// elimination tree (0 for a leaf; a column's descendants all have smaller heights).
+struct Elimination {
+  std::vector<std::vector<int>> structure;  ///< struct(j): the block rows below j, ascending
+  std::vector<int> height;
+};
+
+/// struct(j) = the later neighbours of j ∪ the structs of j's children minus j, and
+/// parent(j) = min struct(j).
+Elimination eliminate(const std::vector<std::vector<int>>& adjacent, const std::vector<int>& order,
+                      const std::vector<int>& position) {
+  const int nb = int(order.size());
+  Elimination e{std::vector<std::vector<int>>(nb), std::vector<int>(nb, 0)};
+  std::vector<std::vector<int>> children(nb);
   for (int j = 0; j < nb; ++j) {
-    std::vector<int>& s = structure[j];
+    std::vector<int>& s = e.structure[j];
     for (int I : adjacent[order[j]])
       if (position[I] > j) s.push_back(position[I]);
     for (int c : children[j]) {
-      for (int i : structure[c])
+      for (int i : e.structure[c])
         if (i != j) s.push_back(i);
-      height[j] = std::max(height[j], height[c] + 1);
+      e.height[j] = std::max(e.height[j], e.height[c] + 1);
     }
     std::sort(s.begin(), s.end());
     s.erase(std::unique(s.begin(), s.end()), s.end());
     if (!s.empty()) children[s.front()].push_back(j);
   }
+  return e;
+}
+
+}  // namespace
+
+void BlockCholesky::analyze(const Eigen::SparseMatrix<double>& upper, const std::vector<int>& sizes) {
+  const int n = int(upper.rows());
+  std::vector<int> offsets{0};
+  for (int s : sizes) offsets.push_back(offsets.back() + s);
+  if (upper.cols() != n || offsets.back() != n)
+    throw std::invalid_argument("BlockCholesky: DOF blocks of " + std::to_string(offsets.back()) +
+                                " DOFs for a " + std::to_string(n) + " × " + std::to_string(upper.cols()) + " matrix");
+  const int nb = int(sizes.size());
+  std::vector<int> block_of(n);
+  for (int b = 0; b < nb; ++b) std::fill(block_of.begin() + offsets[b], block_of.begin() + offsets[b + 1], b);
+  const std::vector<std::vector<int>> adjacent = block_graph(upper, offsets, block_of);
+  const std::vector<int> order = minimum_degree_order(adjacent);
+  std::vector<int> position(nb);
+  for (int k = 0; k < nb; ++k) position[order[k]] = k;
+  const auto [structure, height] = eliminate(adjacent, order, position);
 
   m_columns.resize(nb);
   m_column_offsets.assign(nb + 1, 0);
@@ -109,7 +134,7 @@ void BlockCholesky::analyze(const Eigen::SparseMatrix<double>& upper, const std:
   m_flops = m_nonzeros = 0;
   for (int j = 0; j < nb; ++j) {
     const int b = order[j], s = sizes[b];
-    m_columns[j] = {b, s, offsets[b], pool};
+    m_columns[j] = {s, offsets[b], pool};
     pool += std::size_t(s) * s;
     m_nonzeros += 0.5 * s * (s + 1);
     m_flops += s * double(s) * s / 3;

@@ -39,9 +39,8 @@ class BlockCholesky {
   bool analysed() const { return !m_column_offsets.empty(); }
 
  private:
-  /// Column j of L in the permuted order: block rows struct(j) (ascending, all > j).
+  /// Column j of L in the elimination order: one DOF block.
   struct Column {
-    int block;                ///< the original DOF block
     int size;                 ///< its width
     int offset;               ///< its first DOF in the original order
     std::size_t diagonal;     ///< pool offset of L_jj (size × size, column-major)
