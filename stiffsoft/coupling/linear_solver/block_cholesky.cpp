@@ -180,6 +180,8 @@ void BlockCholesky::analyze(const Eigen::SparseMatrix<double>& upper, const std:
   // block of L below the diagonal that holds it (transposed when its block row comes first).
   // A column's entries run through its blocks in order, so each block is looked up once.
   m_target.resize(upper.nonZeros());
+  m_target_column.resize(upper.nonZeros());
+  m_input.clear();
   std::int64_t k = 0;
   const auto entry_at = [&](int row, int column) {
     const auto begin = m_entries.begin() + m_column_offsets[column], end = m_entries.begin() + m_column_offsets[column + 1];
@@ -204,6 +206,7 @@ void BlockCholesky::analyze(const Eigen::SparseMatrix<double>& upper, const std:
       const int rl = int(it.row()) - offsets[I];
       // Diagonal blocks: entry (rl ≤ cl) goes to the lower triangle, (cl, rl).
       m_target[k] = base + rl * row_stride + cl * column_stride;
+      m_target_column[k] = std::min(position[I], pj);
     }
   }
   const bool uniform = std::all_of(sizes.begin(), sizes.end(), [&](int s) { return s == sizes.front(); });
@@ -245,18 +248,42 @@ bool BlockCholesky::factor_column(int j, std::vector<int>& slot) {
 
 bool BlockCholesky::factorize(const Eigen::SparseMatrix<double>& upper) {
   if (!analysed()) analyze(upper, std::vector<int>(upper.rows(), 1));
-  std::fill(m_pool.begin(), m_pool.end(), 0.0);
   const double* values = upper.valuePtr();
-  for (std::size_t k = 0; k < m_target.size(); ++k) m_pool[m_target[k]] = values[k];
-  tbb::enumerable_thread_specific<std::vector<int>> slots(std::vector<int>(m_columns.size(), -1));
+  const std::size_t nnz = m_target.size(), nb = m_columns.size();
+  // After a successful factorisation of the same pattern only the columns whose entries changed
+  // and the columns they update (their ancestors) are computed again: the others' blocks of L
+  // are those a full factorisation would give, bit for bit (friction's revised directions
+  // change a few stencils' blocks and factorise again).
+  std::vector<char> redo(nb, 1);
+  if (m_input.size() == nnz) {
+    std::fill(redo.begin(), redo.end(), 0);
+    for (std::size_t k = 0; k < nnz; ++k)
+      if (values[k] != m_input[k]) redo[m_target_column[k]] = 1;
+    for (int j : m_by_level)  // a column's descendants come before it
+      for (int u = m_update_offsets[j]; u < m_update_offsets[j + 1] && !redo[j]; ++u) redo[j] = redo[m_updates[u].column];
+  }
+  m_refactored = 0;
+  for (std::size_t j = 0; j < nb; ++j) {
+    if (!redo[j]) continue;
+    ++m_refactored;
+    const std::size_t end = j + 1 < nb ? m_columns[j + 1].diagonal : m_pool.size();
+    std::fill(m_pool.begin() + m_columns[j].diagonal, m_pool.begin() + end, 0.0);
+  }
+  for (std::size_t k = 0; k < nnz; ++k)
+    if (redo[m_target_column[k]]) m_pool[m_target[k]] = values[k];
+  tbb::enumerable_thread_specific<std::vector<int>> slots(std::vector<int>(nb, -1));
   std::atomic<bool> ok{true};
   for_levels(m_level_offsets, m_by_level, true, [&](int j) {
-    if (!ok.load(std::memory_order_relaxed)) return;
+    if (!redo[j] || !ok.load(std::memory_order_relaxed)) return;
     const bool column_ok = m_uniform == 12 ? factor_column<12>(j, slots.local())
                            : m_uniform == 3 ? factor_column<3>(j, slots.local())
                                             : factor_column<Eigen::Dynamic>(j, slots.local());
     if (!column_ok) ok = false;
   });
+  if (ok)
+    m_input.assign(values, values + nnz);
+  else
+    m_input.clear();  // the factor is incomplete: the next factorisation starts afresh
   return ok;
 }
 

@@ -27,8 +27,13 @@ class BlockCholesky {
   /// sizes do not add up to n or an entry lies below the diagonal.
   void analyze(const Eigen::SparseMatrix<double>& upper, const std::vector<int>& sizes);
   /// Numeric factorisation of `upper` (the analysed pattern); false when a pivot block is not
-  /// positive definite (numerically), after which solve() must not be called.
+  /// positive definite (numerically), after which solve() must not be called. After a
+  /// successful factorisation of the same analysis, only the columns whose entries changed and
+  /// their ancestors in the elimination tree are computed again (the same factor, bit for bit).
   bool factorize(const Eigen::SparseMatrix<double>& upper);
+  /// Columns (DOF blocks) the last factorize() computed: all of them, or fewer when it could
+  /// keep some from the factorisation before.
+  std::size_t refactored_columns() const { return m_refactored; }
   /// x = H⁻¹ b with the last factor.
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
   /// Floating-point operations of one factorisation, from the symbolic analysis.
@@ -71,9 +76,12 @@ class BlockCholesky {
   std::vector<Update> m_updates;
   std::vector<int> m_level_offsets, m_by_level;  // columns grouped by height in the elimination tree
   std::vector<std::int64_t> m_target;            // per stored entry of `upper`: its pool index
+  std::vector<int> m_target_column;              // … and the column of L that holds it
+  std::vector<double> m_input;                   // `upper`'s values at the last successful factorisation
   std::vector<double> m_pool;                    // L's blocks
   int m_uniform = 0;                             // the common block size, 0 when they differ
   double m_flops = 0, m_nonzeros = 0;
+  std::size_t m_refactored = 0;
 };
 
 }  // namespace stiffsoft
