@@ -27,7 +27,7 @@ constexpr double kAutoRedecideChange = 0.25;
 
 /// Delegates to a direct solver or to PETSc (default_petsc_method()): below kAutoKrylovRows rows
 /// the block Cholesky (when every DOF block given by set_block_sizes() is an affine body's 12:
-/// its 12×12 dense blocks factorise about 2.5× faster than CHOLMOD's simplicial method,
+/// its 12×12 dense blocks factorise 2.7–3.4× faster than CHOLMOD's simplicial method,
 /// docs/benchmarks.md) or else CHOLMOD analyses the pattern and is kept when it predicts at
 /// most kAutoDirectFlops for the factorisation (soft nodes' 3×3 blocks fill like a 3-D mesh,
 /// which CHOLMOD's supernodes and PETSc handle better); otherwise PETSc. The decision is

@@ -1,9 +1,10 @@
 #pragma once
-/// @file Sparse Cholesky factorisation over dense DOF blocks: L is stored block by block (an affine body's 12×12, a soft node's 3×3), the fill-reducing ordering and the
-/// elimination tree are those of the block graph, and every operation is a small dense one.
-/// For the rigid piles, whose factor is a few hundred 12×12 blocks with little fill, this is
-/// what CHOLMOD's simplicial (scalar) and supernodal (per-supernode BLAS) methods both do
-/// slowly; independent subtrees of the elimination tree are factorised in parallel.
+/// @file Sparse Cholesky factorisation over dense DOF blocks: L is stored block by block (an
+/// affine body's 12×12, a soft node's 3×3), the fill-reducing ordering and the elimination
+/// tree are those of the block graph, and every operation is a small dense one. The rigid
+/// piles' factors are a few hundred 12×12 blocks with little fill, which CHOLMOD's simplicial
+/// method treats one scalar column at a time and its supernodal one with a BLAS call per small
+/// supernode; here the columns of each level of the elimination tree run in parallel.
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
