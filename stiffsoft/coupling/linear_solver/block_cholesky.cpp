@@ -15,23 +15,29 @@ namespace stiffsoft {
 
 namespace {
 
-/// Levels of the elimination tree with fewer columns than this run on the calling thread:
-/// a task per column costs more than a 12×12 column's arithmetic.
-constexpr std::size_t kParallelColumns = 8;
+/// How the columns of one level of the elimination tree are split between threads: levels with
+/// fewer than `minimum` columns run on the calling thread, larger ones in tasks of at least
+/// `grain` columns. A task costs a few µs to hand out, a 12×12 column's factorisation about
+/// 1 µs and its triangular solves about 0.1 µs.
+struct LevelSplit {
+  int minimum, grain;
+};
+constexpr LevelSplit kFactorSplit{32, 16};
+constexpr LevelSplit kSolveSplit{1024, 512};
 
 /// Calls f(j) for every column, level by level (children before parents when `upward`,
 /// parents first otherwise); the columns of one level are independent.
 template <class F>
-void for_levels(const std::vector<int>& offsets, const std::vector<int>& columns, bool upward, F&& f) {
+void for_levels(const std::vector<int>& offsets, const std::vector<int>& columns, bool upward, LevelSplit split, F&& f) {
   const int levels = int(offsets.size()) - 1;
   for (int l = 0; l < levels; ++l) {
     const int level = upward ? l : levels - 1 - l;
     const int begin = offsets[level], end = offsets[level + 1];
-    if (std::size_t(end - begin) < kParallelColumns) {
+    if (end - begin < split.minimum) {
       for (int k = begin; k < end; ++k) f(columns[k]);
       continue;
     }
-    tbb::parallel_for(tbb::blocked_range<int>(begin, end, 2), [&](const tbb::blocked_range<int>& r) {
+    tbb::parallel_for(tbb::blocked_range<int>(begin, end, split.grain), [&](const tbb::blocked_range<int>& r) {
       for (int k = r.begin(); k < r.end(); ++k) f(columns[k]);
     });
   }
@@ -273,7 +279,7 @@ bool BlockCholesky::factorize(const Eigen::SparseMatrix<double>& upper) {
     if (redo[m_target_column[k]]) m_pool[m_target[k]] = values[k];
   tbb::enumerable_thread_specific<std::vector<int>> slots(std::vector<int>(nb, -1));
   std::atomic<bool> ok{true};
-  for_levels(m_level_offsets, m_by_level, true, [&](int j) {
+  for_levels(m_level_offsets, m_by_level, true, kFactorSplit, [&](int j) {
     if (!redo[j] || !ok.load(std::memory_order_relaxed)) return;
     const bool column_ok = m_uniform == 12 ? factor_column<12>(j, slots.local())
                            : m_uniform == 3 ? factor_column<3>(j, slots.local())
@@ -292,7 +298,7 @@ void BlockCholesky::solve_in_place(Eigen::VectorXd& x) const {
   const double* pool = m_pool.data();
   const auto L = [&](std::size_t at, int rows, int cols) { return Eigen::Map<const Eigen::Matrix<double, S, S>>(pool + at, rows, cols); };
   // L y = b, children first: y_j = L_jj⁻¹ (b_j − Σ_k L_jk y_k).
-  for_levels(m_level_offsets, m_by_level, true, [&](int j) {
+  for_levels(m_level_offsets, m_by_level, true, kSolveSplit, [&](int j) {
     const Column& cj = m_columns[j];
     Segment<S> y(x.data() + cj.offset, cj.size);
     for (int u = m_update_offsets[j]; u < m_update_offsets[j + 1]; ++u) {
@@ -303,7 +309,7 @@ void BlockCholesky::solve_in_place(Eigen::VectorXd& x) const {
     y = Eigen::Matrix<double, S, 1>(L(cj.diagonal, cj.size, cj.size).lazyProduct(y));  // L_jj⁻¹: zero above its diagonal
   });
   // Lᵀ x = y, parents first: x_j = L_jj⁻ᵀ (y_j − Σ_i L_ijᵀ x_i).
-  for_levels(m_level_offsets, m_by_level, false, [&](int j) {
+  for_levels(m_level_offsets, m_by_level, false, kSolveSplit, [&](int j) {
     const Column& cj = m_columns[j];
     Segment<S> y(x.data() + cj.offset, cj.size);
     for (int e = m_column_offsets[j]; e < m_column_offsets[j + 1]; ++e) {
