@@ -4,7 +4,8 @@
 /// tree are those of the block graph, and every operation is a small dense one. The rigid
 /// piles' factors are a few hundred 12×12 blocks with little fill, which CHOLMOD's simplicial
 /// method treats one scalar column at a time and its supernodal one with a BLAS call per small
-/// supernode; here the columns of each level of the elimination tree run in parallel.
+/// supernode; here the columns of each wide level of the elimination tree are factorised in
+/// parallel.
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
