@@ -188,6 +188,9 @@ void BlockCholesky::analyze(const Eigen::SparseMatrix<double>& upper, const std:
   m_target.resize(upper.nonZeros());
   m_target_column.resize(upper.nonZeros());
   m_input.clear();
+  m_n = n;
+  m_outer.assign(upper.outerIndexPtr(), upper.outerIndexPtr() + n + 1);
+  m_inner.assign(upper.innerIndexPtr(), upper.innerIndexPtr() + upper.nonZeros());
   std::int64_t k = 0;
   const auto entry_at = [&](int row, int column) {
     const auto begin = m_entries.begin() + m_column_offsets[column], end = m_entries.begin() + m_column_offsets[column + 1];
@@ -253,7 +256,7 @@ bool BlockCholesky::factor_column(int j, std::vector<int>& slot) {
 }
 
 bool BlockCholesky::factorize(const Eigen::SparseMatrix<double>& upper) {
-  if (!analysed()) analyze(upper, std::vector<int>(upper.rows(), 1));
+  if (!analysed()) throw std::logic_error("BlockCholesky::factorize before analyze");
   const double* values = upper.valuePtr();
   const std::size_t nnz = m_target.size(), nb = m_columns.size();
   // After a successful factorisation of the same pattern only the columns whose entries changed

@@ -28,10 +28,11 @@ class BlockCholesky {
   /// L and where each stored entry of `upper` goes. Throws std::invalid_argument when the
   /// sizes do not add up to n or an entry lies below the diagonal.
   void analyze(const Eigen::SparseMatrix<double>& upper, const std::vector<int>& sizes);
-  /// Numeric factorisation of `upper` (the analysed pattern); false when a pivot block is not
-  /// positive definite (numerically), after which solve() must not be called. After a
-  /// successful factorisation of the same analysis, only the columns whose entries changed and
-  /// their ancestors in the elimination tree are computed again (the same factor, bit for bit).
+  /// Numeric factorisation of `upper` (the analysed pattern; throws std::logic_error before
+  /// analyze()); false when a pivot block is not positive definite (numerically), after which
+  /// solve() must not be called. After a successful factorisation of the same analysis, only
+  /// the columns whose entries changed and their ancestors in the elimination tree are
+  /// computed again (the same factor, bit for bit).
   bool factorize(const Eigen::SparseMatrix<double>& upper);
   /// Columns (DOF blocks) the last factorize() computed: all of them, or fewer when it could
   /// keep some from the factorisation before.
@@ -44,6 +45,12 @@ class BlockCholesky {
   double nonzeros() const { return m_nonzeros; }
   /// Whether analyze() has been called.
   bool analysed() const { return !m_column_offsets.empty(); }
+  /// The upper triangle of the last successfully factorised H (the analysed pattern with the
+  /// values kept for the next factorisation's comparison), valid until the next analyze() or
+  /// failed factorize(); for residuals without a copy of H.
+  Eigen::Map<const Eigen::SparseMatrix<double>> factorised() const {
+    return {m_n, m_n, Eigen::Index(m_input.size()), m_outer.data(), m_inner.data(), m_input.data()};
+  }
 
  private:
   /// Column j of L in the elimination order: one DOF block.
@@ -80,6 +87,8 @@ class BlockCholesky {
   std::vector<std::int64_t> m_target;            // per stored entry of `upper`: its pool index
   std::vector<int> m_target_column;              // … and the column of L that holds it
   std::vector<double> m_input;                   // `upper`'s values at the last successful factorisation
+  std::vector<int> m_outer, m_inner;             // `upper`'s pattern (compressed columns)
+  Eigen::Index m_n = 0;
   std::vector<double> m_pool;                    // L's blocks
   int m_uniform = 0;                             // the common block size, 0 when they differ
   double m_flops = 0, m_nonzeros = 0;

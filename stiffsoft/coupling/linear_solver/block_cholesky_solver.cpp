@@ -25,9 +25,7 @@ bool BlockCholeskySolver::factorize(const Eigen::SparseMatrix<double>& upper) {
   m_report = LinearSolveReport{};
   if (!m_factor.analysed()) analyze_pattern(upper);
   m_factorized = m_factor.factorize(upper);
-  if (m_factorized) {
-    m_upper = upper;
-  } else {
+  if (!m_factorized) {
     m_report.status = LinearSolveStatus::Indefinite;
     m_report.reason = "block Cholesky: a pivot block is not positive definite";
   }
@@ -42,7 +40,7 @@ Eigen::VectorXd BlockCholeskySolver::solve(const Eigen::VectorXd& b) {
     return Eigen::VectorXd::Constant(b.size(), std::numeric_limits<double>::quiet_NaN());
   }
   Eigen::VectorXd p = refined_solve(
-      m_upper, b, [&](const Eigen::VectorXd& rhs) { return m_factor.solve(rhs); }, "block Cholesky", m_report);
+      m_factor.factorised(), b, [&](const Eigen::VectorXd& rhs) { return m_factor.solve(rhs); }, "block Cholesky", m_report);
   m_report.solve_seconds = seconds_since(start);
   return p;
 }

@@ -31,7 +31,6 @@ class BlockCholeskySolver final : public LinearSolver {
  private:
   BlockCholesky m_factor;
   std::vector<int> m_sizes;
-  Eigen::SparseMatrix<double> m_upper;  // the factorised H, for the refinement's residual
   bool m_factorized = false;
 };
 
