@@ -1,5 +1,7 @@
 #include <stiffsoft/coupling/contact/barrier_potential.hpp>
 
+#include <stiffsoft/coupling/contact/projected_barrier_hessian.hpp>
+
 namespace stiffsoft::contact {
 
 Classified classify_edge_edge_stencil(const Vector12d& x) {
@@ -53,6 +55,7 @@ Vector12d barrier_potential_gradient(const Stencil& s, const Vector12d& x, doubl
 
 Matrix12d barrier_potential_hessian(const Stencil& s, const Vector12d& x, double dhat,
                                     bool project_psd) {
+  if (project_psd && !is_mollified(s)) return projected_barrier_hessian(s, x, dhat);
   const double d2 = stencil_squared_distance(s, x);
   if (d2 >= dhat * dhat) return Matrix12d::Zero();
   const Vector12d grad_d2 = stencil_squared_distance_gradient(s, x);

@@ -67,13 +67,15 @@ double barrier_potential(const Stencil& s, const Vector12d& x, double dhat);
 Vector12d barrier_potential_gradient(const Stencil& s, const Vector12d& x, double dhat);
 
 /// ∇²P = m (b'' ∇d² ∇d²ᵀ + b' ∇²d²) + b' (∇m ∇d²ᵀ + ∇d² ∇mᵀ) + b ∇²m, 12×12, m².
-/// project_psd: clamp the negative eigenvalues of the active (3·vertex_count)² block to 0.
+/// project_psd: clamp the negative eigenvalues of the active (3·vertex_count)² block to 0
+/// (unmollified stencils: by projected_barrier_hessian, in the ≤ 5-dimensional span of ∇d² and ∇²d²).
 Matrix12d barrier_potential_hessian(const Stencil& s, const Vector12d& x, double dhat,
                                     bool project_psd);
 
 /// How Newton's Hessian of a stencil's barrier is made positive semi-definite.
 enum class BarrierHessian {
-  /// The exact ∇²P with its negative eigenvalues clamped to 0 (a 12×12 eigen-decomposition).
+  /// The exact ∇²P with its negative eigenvalues clamped to 0: a (3 + M)×(3 + M)
+  /// eigen-decomposition (projected_barrier_hessian.hpp), 9×9 for mollified edge pairs.
   Projected,
   /// κ B″(d) ∇d ∇dᵀ (barrier_gauss_newton_hessian): PSD by construction, no decomposition; it
   /// leaves out B′(d) ∇²d, the distance's own curvature. Mollified edge–edge stencils keep the

@@ -12,8 +12,8 @@ namespace stiffsoft::contact {
 /// A = V Λ Vᵀ → V max(Λ, 0) Vᵀ (projected Newton, Teran et al. 2005; IPC §4).
 /// Reads the lower triangle of A. Returns A itself, bit for bit, when it is already PSD,
 /// so that projecting a PSD Hessian never perturbs it. Instantiated for N = 2 (friction's
-/// tangent core) and 9 (the tests' reference for the 9×9 case); barrier stencils use
-/// project_translation_invariant_to_psd.
+/// tangent core) and 9 (the tests' reference for the 9×9 case); mollified barrier stencils use
+/// project_translation_invariant_to_psd, the others projected_barrier_hessian.
 template <int N>
 Eigen::Matrix<double, N, N> project_to_psd(const Eigen::Matrix<double, N, N>& A);
 

@@ -119,7 +119,36 @@ Matrix12d residual_hessian(const AffineResidual<M>& res, const Vector12d& x) {
   return kron_identity(m.c) - 2.0 * B * m.gram_pinv * B.transpose();
 }
 
+/// The factors of ∇²d² from the minimiser of an M-parameter residual.
+template <int M>
+DistanceCurvature residual_curvature(const AffineResidual<M>& res, const Vector12d& x) {
+  const ResidualMinimum<M> m = minimize_residual(res, x);
+  DistanceCurvature k;
+  k.M = M;
+  k.c = m.c;
+  k.r = m.r;
+  k.D.leftCols<M>() = res.D;
+  k.E.leftCols<M>() = m.E;
+  k.gram_pinv.topLeftCorner<M, M>() = m.gram_pinv;
+  return k;
+}
+
 }  // namespace
+
+DistanceCurvature distance_curvature(PrimitivePair kind, const Vector12d& x) {
+  switch (kind) {
+    case PrimitivePair::VertexVertex: {
+      DistanceCurvature k;
+      k.c = Eigen::Vector4d(1, -1, 0, 0);
+      k.r = combine(x, k.c);
+      return k;
+    }
+    case PrimitivePair::EdgeVertex: return residual_curvature(edge_vertex_residual(), x);
+    case PrimitivePair::EdgeEdge: return residual_curvature(edge_edge_residual(), x);
+    case PrimitivePair::FaceVertex: return residual_curvature(face_vertex_residual(), x);
+  }
+  return {};
+}
 
 ClosestPoints closest_points(PrimitivePair kind, const Vector12d& x) {
   ClosestPoints cp;

@@ -47,4 +47,27 @@ Vector12d squared_distance_gradient(PrimitivePair kind, const Vector12d& x);
 /// ∇²_x d², 12×12, dimensionless; zero on the unused vertices. Not PSD in general (EE, FV).
 Matrix12d squared_distance_hessian(PrimitivePair kind, const Vector12d& x);
 
+/// What ∇²d² is made of at x, from one closest-point solve: with M closest-point parameters
+/// (0 VV, 1 EV, 2 FV and EE), B_k = D_k ⊗ r + c ⊗ E_k (k < M) and P = (EᵀE)⁺,
+///   ∇²d² = 2 (c cᵀ) ⊗ I₃ − 2 B P Bᵀ,   ∇d² = 2 (c ⊗ r).
+/// Both live in span{c ⊗ e_j} + span{d_k ⊗ r}, d_k = D_k less its part along c (at most
+/// 3 + M ≤ 5 dimensions): projected_barrier_hessian.hpp works there.
+struct DistanceCurvature {
+  /// closest-point parameters M (0 VV, 1 EV, 2 FV and EE)
+  int M = 0;
+  /// weights c(y*) of the four stencil vertices, dimensionless
+  Eigen::Vector4d c = Eigen::Vector4d::Zero();
+  /// residual r between the closest points, metres
+  Eigen::Vector3d r = Eigen::Vector3d::Zero();
+  /// ∂c/∂y, first M columns used, dimensionless
+  Eigen::Matrix<double, 4, 2> D = Eigen::Matrix<double, 4, 2>::Zero();
+  /// ∂r/∂y, first M columns used, metres
+  Eigen::Matrix<double, 3, 2> E = Eigen::Matrix<double, 3, 2>::Zero();
+  /// (EᵀE)⁺, leading M×M used, m⁻²
+  Eigen::Matrix2d gram_pinv = Eigen::Matrix2d::Zero();
+};
+
+/// The factors of ∇²d² of the pair at x (see DistanceCurvature).
+DistanceCurvature distance_curvature(PrimitivePair kind, const Vector12d& x);
+
 }  // namespace stiffsoft::contact

@@ -1,0 +1,76 @@
+#include <stiffsoft/coupling/contact/projected_barrier_hessian.hpp>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+namespace stiffsoft::contact {
+
+namespace {
+
+/// The projection for M closest-point parameters (the order of S is 3 + M).
+template <int M>
+Matrix12d project_in_distance_span(const DistanceCurvature& k, double db, double ddb) {
+  constexpr int n = 3 + M;
+  const double c2 = k.c.squaredNorm(), c_norm = std::sqrt(c2), r_norm = k.r.norm();
+  const Eigen::Vector4d c_hat = k.c / c_norm;
+  const Eigen::Vector3d r_hat = r_norm > 0.0 ? Eigen::Vector3d(k.r / r_norm) : Eigen::Vector3d::Zero();
+  // q_l: Gram–Schmidt over the D_k less their parts along c (never parallel to c: c's first
+  // vertex weight is 1 where every D_k has 0, or its first two weights sum to 1 where D_k's sum to 0).
+  Eigen::Matrix<double, 4, 2> q = Eigen::Matrix<double, 4, 2>::Zero();  // first M columns used
+  for (int l = 0; l < M; ++l) {
+    Eigen::Vector4d v = k.D.col(l) - c_hat.dot(k.D.col(l)) * c_hat;
+    for (int j = 0; j < l; ++j) v -= q.col(j).dot(v) * q.col(j);
+    const double v_norm = v.norm();
+    q.col(l) = v_norm > 0.0 ? Eigen::Vector4d(v / v_norm) : Eigen::Vector4d::Zero();
+  }
+  // S: the Hessian in the basis [ĉ ⊗ e_1, ĉ ⊗ e_2, ĉ ⊗ e_3, q_l ⊗ r̂].
+  Eigen::Matrix<double, n, n> S = Eigen::Matrix<double, n, n>::Zero();
+  S.template topLeftCorner<3, 3>() = c2 * (4.0 * ddb * k.r * k.r.transpose());
+  S.template topLeftCorner<3, 3>().diagonal().array() += 2.0 * db * c2;
+  if constexpr (M > 0) {
+    Eigen::Matrix<double, n, M> Y;  // coordinates of B_k
+    for (int j = 0; j < M; ++j) {
+      Y.col(j).template head<3>() = (k.c.dot(k.D.col(j)) * k.r + c2 * k.E.col(j)) / c_norm;
+      for (int l = 0; l < M; ++l) Y(3 + l, j) = r_norm * q.col(l).dot(k.D.col(j));
+    }
+    S.noalias() -= (2.0 * db) * Y.lazyProduct(k.gram_pinv.template topLeftCorner<M, M>()).lazyProduct(Y.transpose());
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, n, n>> es(S);
+  // H₊ = Σ_m λ_m⁺ g_m g_mᵀ, g_m = ĉ ⊗ v_m,head + (q v_m,tail) ⊗ r̂.
+  Matrix12d H = Matrix12d::Zero();
+  for (int m = 0; m < n; ++m) {
+    const double lambda = es.eigenvalues()[m];
+    if (!(lambda > 0.0)) continue;
+    const auto v = es.eigenvectors().col(m);
+    Eigen::Vector4d along_r = Eigen::Vector4d::Zero();
+    if constexpr (M > 0) along_r = q.leftCols<M>() * v.template tail<M>();
+    Vector12d g;
+    for (int i = 0; i < 4; ++i) g.segment<3>(3 * i) = c_hat[i] * v.template head<3>() + along_r[i] * r_hat;
+    H.selfadjointView<Eigen::Lower>().rankUpdate(g, lambda);
+  }
+  return H.selfadjointView<Eigen::Lower>();
+}
+
+}  // namespace
+
+Matrix12d projected_barrier_hessian(const DistanceCurvature& k, double db, double ddb) {
+  switch (k.M) {
+    case 0: return project_in_distance_span<0>(k, db, ddb);
+    case 1: return project_in_distance_span<1>(k, db, ddb);
+    default: return project_in_distance_span<2>(k, db, ddb);
+  }
+}
+
+Matrix12d projected_barrier_hessian(const Stencil& s, const Vector12d& x, double dhat) {
+  const auto project = [dhat](PrimitivePair kind, const Vector12d& y) -> Matrix12d {
+    const DistanceCurvature k = distance_curvature(kind, y);
+    const double d2 = k.r.squaredNorm();
+    if (d2 >= dhat * dhat) return Matrix12d::Zero();
+    return projected_barrier_hessian(k, barrier_first_derivative(d2, dhat), barrier_second_derivative(d2, dhat));
+  };
+  if (!uses_segment_distance(s)) return project(s.kind, x);
+  const Classified c = classify_edge_edge_stencil(x);
+  return scatter_classified(c, project(c.kind, gather_classified(c, x)));
+}
+
+}  // namespace stiffsoft::contact
