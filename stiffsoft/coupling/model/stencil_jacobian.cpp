@@ -52,22 +52,25 @@ void StencilJacobian::block_hessians(const Eigen::Matrix<double, 12, 12>& H_x, S
       if (next + columns[t] * columns[s] > StencilHessian::kCapacity)
         throw std::logic_error("StencilJacobian: a stencil spans more DOFs than two affine bodies");
       const int nk = weights(columns[t]), nl = weights(columns[s]);
-      Eigen::Map<Eigen::MatrixXd> block_ts(out.values.data() + next, columns[t], columns[s]);
-      block_ts.setZero();
-      // J_tᵀ H J_s = Σ over vertex pairs (a in t, b in s) of w_a w_bᵀ ⊗ H_ab, in q's order.
-      for (int a = 0; a < 4; ++a) {
-        if (slot_of[a] != t) continue;
-        for (int b = 0; b < 4; ++b) {
-          if (slot_of[b] != s) continue;
+      // J_tᵀ H J_s = Σ over vertex pairs (a in t, b in s) of w_a w_bᵀ ⊗ H_ab, as K with rows
+      // 3k + i and columns 3l + j: first G_b = Σ_a w_a ⊗ H_ab (12×3), then K += w_bᵀ ⊗ G_b.
+      Eigen::Matrix<double, 12, 12> K = Eigen::Matrix<double, 12, 12>::Zero();
+      for (int b = 0; b < 4; ++b) {
+        if (slot_of[b] != s) continue;
+        Eigen::Matrix<double, 12, 3> G = Eigen::Matrix<double, 12, 3>::Zero();
+        for (int a = 0; a < 4; ++a) {
+          if (slot_of[a] != t) continue;
           const Eigen::Matrix3d H_ab = H_x.block<3, 3>(3 * a, 3 * b);
-          for (int k = 0; k < nk; ++k)
-            for (int l = 0; l < nl; ++l) {
-              const double c = w[a][k] * w[b][l];
-              for (int j = 0; j < 3; ++j)
-                for (int i = 0; i < 3; ++i) block_ts(kDof[k][i], kDof[l][j]) += c * H_ab(i, j);
-            }
+          for (int k = 0; k < nk; ++k) G.block<3, 3>(3 * k, 0) += w[a][k] * H_ab;
         }
+        for (int l = 0; l < nl; ++l) K.middleCols<3>(3 * l) += w[b][l] * G;
       }
+      // K in q's order.
+      double* block_ts = out.values.data() + next;
+      for (int l = 0; l < nl; ++l)
+        for (int j = 0; j < 3; ++j)
+          for (int k = 0; k < nk; ++k)
+            for (int i = 0; i < 3; ++i) block_ts[kDof[l][j] * columns[t] + kDof[k][i]] = K(3 * k + i, 3 * l + j);
       out.row[out.count] = block[t];
       out.column[out.count] = block[s];
       out.at[out.count] = next;
