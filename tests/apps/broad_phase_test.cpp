@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
 #include <set>
 #include <stiffsoft/coupling/contact/broad_phase.hpp>
 #include <stiffsoft/coupling/contact/distance_classification.hpp>
@@ -87,6 +88,56 @@ TEST(BroadPhase, HoldsEveryPairCloserThanDhat) {
       EXPECT_TRUE(ee.count({e, g})) << "edges " << e << ", " << g << " at " << std::sqrt(d2) << " m";
     }
   EXPECT_GT(close, 20) << "the heap should have pairs closer than d̂";
+}
+
+TEST(BroadPhase, SelfContactCandidatesAreExactlyThePairsWhoseBoxesOverlap) {
+  // A flat soft slab against itself goes through the grid (grid_pairs): the candidates must be
+  // exactly the pairs sharing no vertex whose inflated boxes overlap, each once.
+  constexpr const char* kSlab = R"({
+    "description": "self-contact slab",
+    "time": {"dt": 0.01, "duration": 0.01},
+    "bodies": [{"name": "slab", "model": "soft", "mesh": {"primitive": "box", "size": [0.6, 0.06, 0.4]},
+                "mesh_size": 0.05, "density": 100.0,
+                "material": {"model": "stable_neo_hookean", "young": 1e5, "poisson": 0.3}}]
+  })";
+  const PreparedScene p =
+      prepare_scene(load_scene_from_string(kSlab, STIFFSOFT_SOURCE_DIR, "slab.json", "slab"), "slab.json");
+  const CollisionMesh& mesh = p.model.mesh;
+  const Eigen::MatrixX3d x = p.model.surface(p.model.initial_q());
+  const double inflation = 0.01;
+  const Candidates found = candidates_with(2, p.model, x, inflation);
+  EXPECT_EQ(found.vertex_face, candidates_with(1, p.model, x, inflation).vertex_face);
+  const auto box = [&](std::initializer_list<int> vertices) {
+    Eigen::Array3d lo = Eigen::Array3d::Constant(1e300), hi = -lo;
+    for (int v : vertices) {
+      lo = lo.min(x.row(v).transpose().array() - inflation);
+      hi = hi.max(x.row(v).transpose().array() + inflation);
+    }
+    return std::make_pair(lo, hi);
+  };
+  const auto overlap = [](const auto& a, const auto& b) {
+    return (a.first <= b.second).all() && (b.first <= a.second).all();
+  };
+  std::vector<std::array<int, 2>> vf, ee;
+  for (int v = 0; v < int(x.rows()); ++v)
+    for (int f = 0; f < int(mesh.F.rows()); ++f)
+      if ((mesh.F.row(f).array() != v).all() && overlap(box({v}), box({mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)})))
+        vf.push_back({v, f});
+  for (int e = 0; e < int(mesh.E.rows()); ++e)
+    for (int g = e + 1; g < int(mesh.E.rows()); ++g) {
+      const bool shared = mesh.E(e, 0) == mesh.E(g, 0) || mesh.E(e, 0) == mesh.E(g, 1) ||
+                          mesh.E(e, 1) == mesh.E(g, 0) || mesh.E(e, 1) == mesh.E(g, 1);
+      if (!shared && overlap(box({mesh.E(e, 0), mesh.E(e, 1)}), box({mesh.E(g, 0), mesh.E(g, 1)})))
+        ee.push_back({e, g});
+    }
+  std::vector<std::array<int, 2>> found_vf = found.vertex_face, found_ee = found.edge_edge;
+  std::sort(found_vf.begin(), found_vf.end());
+  std::sort(found_ee.begin(), found_ee.end());
+  std::printf("    slab: %zu vertices, %zu faces, %zu edges; %zu vertex-face and %zu edge-edge candidates\n",
+              std::size_t(x.rows()), std::size_t(mesh.F.rows()), std::size_t(mesh.E.rows()), vf.size(), ee.size());
+  EXPECT_GT(vf.size(), 100u);
+  EXPECT_EQ(found_vf, vf);
+  EXPECT_EQ(found_ee, ee);
 }
 
 TEST(InOrderedChunks, GathersInItemOrderWhateverTheThreadCount) {

@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include <stiffsoft/coupling/contact/ordered_chunks.hpp>
 
@@ -76,6 +77,58 @@ void sweep(const std::vector<Keyed>& A, const std::vector<Box>& boxes_a, const s
   }
 }
 
+/// Pairs (i, j) of the lists A and B (ids into boxes_a, boxes_b) whose boxes overlap, through a
+/// uniform grid over `region`: every box goes into the cells it meets, and a pair is tested in
+/// the cell that holds the low corner of its two boxes' intersection only, so once. For a
+/// body against itself, where a sweep along one axis of a flat body meets most of the body at
+/// every step. Calls emit(i, j) in cell order, then list order: fixed by the boxes.
+template <class Emit>
+void grid_pairs(const std::vector<Keyed>& A, const std::vector<Box>& boxes_a, const std::vector<Keyed>& B,
+                const std::vector<Box>& boxes_b, const Box& region, Emit&& emit) {
+  if (A.empty() || B.empty()) return;
+  // Cells about twice the mean box, at most ~2 cells per box in all.
+  Eigen::Array3d mean = Eigen::Array3d::Zero();
+  for (const Keyed& k : A) mean += boxes_a[k.id].hi - boxes_a[k.id].lo;
+  for (const Keyed& k : B) mean += boxes_b[k.id].hi - boxes_b[k.id].lo;
+  const Eigen::Array3d extent = (region.hi - region.lo).max(1e-300);
+  const double boxes = double(A.size() + B.size());
+  double cell = std::max(2.0 * mean.maxCoeff() / boxes, std::cbrt(extent.prod() / (2.0 * boxes)));
+  if (!(cell > 0.0)) cell = extent.maxCoeff();
+  const auto dims_for = [&](double h) -> Eigen::Array3d { return (extent / h).min(1e6).ceil().max(1.0); };
+  while (dims_for(cell).prod() > 4.0 * boxes + 64.0) cell *= 2.0;  // flat or empty boxes
+  const Eigen::Array3i dims = dims_for(cell).template cast<int>();
+  const auto cell_of = [&](const Eigen::Array3d& p) {
+    return ((p - region.lo) / cell).floor().cast<int>().max(0).min(dims - 1);
+  };
+  const auto flat = [&](const Eigen::Array3i& c) { return (c[2] * dims[1] + c[1]) * dims[0] + c[0]; };
+  // Cell lists by a counting sort: (cell, position in the list) for A and B.
+  const auto bucket = [&](const std::vector<Keyed>& list, const std::vector<Box>& boxes,
+                          std::vector<int>& offsets, std::vector<int>& members) {
+    offsets.assign(std::size_t(dims.prod()) + 1, 0);
+    const auto each_cell = [&](const Box& b, auto&& f) {
+      const Eigen::Array3i lo = cell_of(b.lo), hi = cell_of(b.hi);
+      for (int k = lo[2]; k <= hi[2]; ++k)
+        for (int j = lo[1]; j <= hi[1]; ++j)
+          for (int i = lo[0]; i <= hi[0]; ++i) f(flat({i, j, k}));
+    };
+    for (const Keyed& e : list) each_cell(boxes[e.id], [&](int c) { ++offsets[c + 1]; });
+    for (std::size_t c = 1; c < offsets.size(); ++c) offsets[c] += offsets[c - 1];
+    members.resize(std::size_t(offsets.back()));
+    std::vector<int> next(offsets.begin(), offsets.end() - 1);
+    for (const Keyed& e : list) each_cell(boxes[e.id], [&](int c) { members[next[c]++] = e.id; });
+  };
+  std::vector<int> offsets_a, members_a, offsets_b, members_b;
+  bucket(A, boxes_a, offsets_a, members_a);
+  bucket(B, boxes_b, offsets_b, members_b);
+  for (int c = 0; c + 1 < int(offsets_a.size()); ++c)
+    for (int p = offsets_a[c]; p < offsets_a[c + 1]; ++p)
+      for (int q = offsets_b[c]; q < offsets_b[c + 1]; ++q) {
+        const Box& a = boxes_a[members_a[p]];
+        const Box& b = boxes_b[members_b[q]];
+        if (a.overlaps(b) && flat(cell_of(a.lo.max(b.lo))) == c) emit(members_a[p], members_b[q]);
+      }
+}
+
 /// True when the body carries DOFs (an affine body that is not fixed, or a soft body).
 bool moves(const BodyModel& body) {
   return body.dof >= 0 || body.representation == Representation::Soft;
@@ -129,10 +182,10 @@ Candidates broad_phase(const Model& model, const Eigen::MatrixX3d& x0, const Eig
     const auto eb = inside(boxes.edge, B.edge_begin, B.edge_end, region, axis);
     if (a == b) {
       // Self-contact of a soft body: every pair once, none that shares a vertex.
-      sweep(va, boxes.vertex, fa, boxes.face, [&](int v, int f) {
+      grid_pairs(va, boxes.vertex, fa, boxes.face, region, [&](int v, int f) {
         if ((mesh.F.row(f).array() != v).all()) out.vertex_face.push_back({v, f});
       });
-      sweep(ea, boxes.edge, ea, boxes.edge, [&](int e, int g) {
+      grid_pairs(ea, boxes.edge, ea, boxes.edge, region, [&](int e, int g) {
         if (e < g && mesh.E(e, 0) != mesh.E(g, 0) && mesh.E(e, 0) != mesh.E(g, 1) &&
             mesh.E(e, 1) != mesh.E(g, 0) && mesh.E(e, 1) != mesh.E(g, 1))
           out.edge_edge.push_back({e, g});

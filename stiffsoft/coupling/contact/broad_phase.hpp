@@ -1,6 +1,7 @@
 #pragma once
 /// @file Broad phase: body pairs first (the seed's i-AABB culling: boxes of the transformed
-/// bodies), then primitive pairs inside each overlapping body pair by sort-and-sweep.
+/// bodies), then primitive pairs inside each overlapping body pair by sort-and-sweep, and those
+/// of a soft body against itself through a uniform grid over the body.
 
 #include <Eigen/Core>
 #include <array>
