@@ -6,6 +6,7 @@
 /// that must agree with the serial solve.
 
 #include <gtest/gtest.h>
+#include <optional>
 #include <unistd.h>
 
 #include <Eigen/Eigenvalues>
@@ -17,6 +18,7 @@
 #include <set>
 
 #include <stiffsoft/coupling/linear_solver/auto_solver.hpp>
+#include <stiffsoft/coupling/linear_solver/block_cholesky_solver.hpp>
 #include <stiffsoft/coupling/linear_solver/block_jacobi.hpp>
 #include <stiffsoft/coupling/linear_solver/block_sparse_pattern.hpp>
 #include <stiffsoft/coupling/linear_solver/cholmod_solver.hpp>
@@ -484,6 +486,35 @@ TEST(AutoSolver, TakesTheBlockCholeskyWhenEveryBlockIsAnAffineBody) {
     EXPECT_LE(relative_residual(s, solver.solve(s.b)), 1e-10);
     EXPECT_EQ(solver.name(), expected);
     EXPECT_FALSE(solver.is_iterative());
+  }
+}
+
+TEST(AutoSolver, KeepsTheBlockCholeskyUpToItsOwnFlopBound) {
+  // 3-D lattices read as 12-blocks (four nodes each): one whose block factor costs between
+  // CHOLMOD's bound and the block Cholesky's stays direct, a larger one goes to PETSc.
+  std::optional<Eigen::SparseMatrix<double>> middle, above;
+  for (int g = 4; g <= 20 && !above; g += 2) {
+    Eigen::SparseMatrix<double> A = lattice_upper(g);
+    BlockCholeskySolver probe;
+    probe.set_block_sizes(std::vector<int>(A.rows() / 12, 12));
+    probe.analyze_pattern(A);
+    if (!middle && probe.factor_flops() > kAutoDirectFlops && probe.factor_flops() <= kAutoBlockCholeskyFlops)
+      middle = A;
+    else if (probe.factor_flops() > kAutoBlockCholeskyFlops)
+      above = A;
+  }
+  ASSERT_TRUE(middle && above);
+  for (const auto& [A, expected] : {std::pair{*middle, std::string("auto→block_cholesky")},
+                                    std::pair{*above, std::string("auto→petsc:cg:icc")}}) {
+    AutoSolver solver;
+    solver.set_relative_tolerance(1e-10);
+    solver.set_block_sizes(std::vector<int>(A.rows() / 12, 12));
+    solver.analyze_pattern(A);
+    ASSERT_TRUE(solver.factorize(A));
+    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(A.rows(), -1, 1);
+    const Eigen::VectorXd p = solver.solve(b);
+    EXPECT_EQ(solver.name(), expected) << A.rows() << " rows";
+    EXPECT_LE((b - A.selfadjointView<Eigen::Upper>() * p).norm() / b.norm(), 1e-9);
   }
 }
 

@@ -28,8 +28,9 @@ void AutoSolver::analyze_pattern(const Eigen::SparseMatrix<double>& upper) {
         !m_block_sizes.empty() && std::accumulate(m_block_sizes.begin(), m_block_sizes.end(), 0) == upper.rows() &&
         std::all_of(m_block_sizes.begin(), m_block_sizes.end(), [](int s) { return s == 12; });
     std::unique_ptr<LinearSolver> direct;
-    double flops = 0;
+    double flops = 0, bound = kAutoDirectFlops;
     if (affine_bodies_only) {
+      bound = kAutoBlockCholeskyFlops;
       auto blocks = std::make_unique<BlockCholeskySolver>();
       blocks->set_block_sizes(m_block_sizes);
       blocks->analyze_pattern(upper);
@@ -41,7 +42,7 @@ void AutoSolver::analyze_pattern(const Eigen::SparseMatrix<double>& upper) {
       flops = cholmod->factor_flops();
       direct = std::move(cholmod);
     }
-    if (flops <= kAutoDirectFlops) {
+    if (flops <= bound) {
       m_backend = std::move(direct);  // analysed already
       m_krylov = false;
       return;

@@ -17,6 +17,13 @@ namespace stiffsoft {
 /// CG + ICC(0) than by CHOLMOD (reference BLAS, 2 busy cores).
 constexpr double kAutoDirectFlops = 2e6;
 
+/// The same bound for the block Cholesky (affine bodies only), whose fixed 12×12 kernels run
+/// far faster per flop than CHOLMOD's simplicial factor. Measured at one thread against
+/// CG + ICC(0), solve phase per Newton iteration (docs/benchmarks.md, session 20): `full` at
+/// t = 0.67 s (6.1 Mflop) 4.4 ms against 8.4; `bricks_900` at 15–18 Mflop 4.4–17 ms against
+/// 9.7–20, at 103 Mflop 30 ms against 19.
+constexpr double kAutoBlockCholeskyFlops = 2e7;
+
 /// Rows from which "auto" takes the Krylov method without asking CHOLMOD: its analysis alone
 /// costs about as much as a Krylov solve there (81 000 rows: 1 s against 0.4–0.7 s).
 constexpr int kAutoKrylovRows = 50000;
@@ -28,8 +35,9 @@ constexpr double kAutoRedecideChange = 0.25;
 /// Delegates to a direct solver or to PETSc (default_petsc_method()): below kAutoKrylovRows rows
 /// the block Cholesky (when every DOF block given by set_block_sizes() is an affine body's 12:
 /// its 12×12 dense blocks factorise 2.7–3.4× faster than CHOLMOD's simplicial method,
-/// docs/benchmarks.md) or else CHOLMOD analyses the pattern and is kept when it predicts at
-/// most kAutoDirectFlops for the factorisation (soft nodes' 3×3 blocks fill like a 3-D mesh,
+/// docs/benchmarks.md) analyses the pattern and is kept when it predicts at most
+/// kAutoBlockCholeskyFlops, or else CHOLMOD does and is kept at most kAutoDirectFlops for the
+/// factorisation (soft nodes' 3×3 blocks fill like a 3-D mesh,
 /// which CHOLMOD's supernodes and PETSc handle better); otherwise PETSc. The decision is
 /// revisited at an analyze_pattern() whose number of stored entries differs by more than
 /// kAutoRedecideChange from the last decision's.
