@@ -28,7 +28,7 @@ void AutoSolver::analyze_pattern(const Eigen::SparseMatrix<double>& upper) {
         !m_block_sizes.empty() && std::accumulate(m_block_sizes.begin(), m_block_sizes.end(), 0) == upper.rows() &&
         std::all_of(m_block_sizes.begin(), m_block_sizes.end(), [](int s) { return s == 12; });
     std::unique_ptr<LinearSolver> direct;
-    double flops = 0, bound = kAutoDirectFlops;
+    double flops = 0, bound = kAutoCholmodFlops;
     if (affine_bodies_only) {
       bound = kAutoBlockCholeskyFlops;
       auto blocks = std::make_unique<BlockCholeskySolver>();

@@ -9,16 +9,16 @@
 
 namespace stiffsoft {
 
-/// Predicted factorisation cost (the symbolic analysis' flop count: cholmod_common::fl, or
-/// BlockCholesky::flops() for affine bodies) up to which "auto" keeps a direct solver. From
+/// Predicted factorisation cost (the symbolic analysis' flop count, cholmod_common::fl) up to
+/// which "auto" keeps CHOLMOD when there are soft nodes. From
 /// bench/linear_solver_bench (docs/benchmarks.md, "Linear solvers"): the rigid pile `medium` (0.98 Mflop) was factorised and solved by CHOLMOD in 1.3
 /// ms against 3.8 ms for CG + ICC(0) at η = 1e-8 (1.1 ms at 1e-3), while every system above
 /// 2.8 Mflop (hybrid and soft scenes, `full`, 3D lattices) was solved 2× to 100× faster by
 /// CG + ICC(0) than by CHOLMOD (reference BLAS, 2 busy cores).
-constexpr double kAutoDirectFlops = 2e6;
+constexpr double kAutoCholmodFlops = 2e6;
 
-/// The same bound for the block Cholesky (affine bodies only), whose fixed 12×12 kernels run
-/// far faster per flop than CHOLMOD's simplicial factor. Measured at one thread against
+/// The same bound for the block Cholesky (BlockCholesky::flops(); affine bodies only), whose
+/// fixed 12×12 kernels run far faster per flop than CHOLMOD's simplicial factor. Measured at one thread against
 /// CG + ICC(0), solve phase per Newton iteration (docs/benchmarks.md, session 20): `full` at
 /// t = 0.67 s (6.1 Mflop) 4.4 ms against 8.4; `bricks_900` at 15–18 Mflop 4.4–17 ms against
 /// 9.7–20, at 103 Mflop 30 ms against 19.
@@ -36,7 +36,7 @@ constexpr double kAutoRedecideChange = 0.25;
 /// the block Cholesky (when every DOF block given by set_block_sizes() is an affine body's 12:
 /// its 12×12 dense blocks factorise 2.7–3.4× faster than CHOLMOD's simplicial method,
 /// docs/benchmarks.md) analyses the pattern and is kept when it predicts at most
-/// kAutoBlockCholeskyFlops, or else CHOLMOD does and is kept at most kAutoDirectFlops for the
+/// kAutoBlockCholeskyFlops, or else CHOLMOD does and is kept at most kAutoCholmodFlops for the
 /// factorisation (soft nodes' 3×3 blocks fill like a 3-D mesh,
 /// which CHOLMOD's supernodes and PETSc handle better); otherwise PETSc. The decision is
 /// revisited at an analyze_pattern() whose number of stored entries differs by more than

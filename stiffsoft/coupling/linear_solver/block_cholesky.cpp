@@ -188,7 +188,6 @@ void BlockCholesky::analyze(const Eigen::SparseMatrix<double>& upper, const std:
   m_target.resize(upper.nonZeros());
   m_target_column.resize(upper.nonZeros());
   m_input.clear();
-  m_n = n;
   m_outer.assign(upper.outerIndexPtr(), upper.outerIndexPtr() + n + 1);
   m_inner.assign(upper.innerIndexPtr(), upper.innerIndexPtr() + upper.nonZeros());
   std::int64_t k = 0;

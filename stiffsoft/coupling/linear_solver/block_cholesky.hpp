@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -49,7 +50,8 @@ class BlockCholesky {
   /// values kept for the next factorisation's comparison), valid until the next analyze() or
   /// failed factorize(); for residuals without a copy of H.
   Eigen::Map<const Eigen::SparseMatrix<double>> factorised() const {
-    return {m_n, m_n, Eigen::Index(m_input.size()), m_outer.data(), m_inner.data(), m_input.data()};
+    const Eigen::Index n = std::max<Eigen::Index>(0, Eigen::Index(m_outer.size()) - 1);
+    return {n, n, Eigen::Index(m_input.size()), m_outer.data(), m_inner.data(), m_input.data()};
   }
 
  private:
@@ -88,7 +90,6 @@ class BlockCholesky {
   std::vector<int> m_target_column;              // … and the column of L that holds it
   std::vector<double> m_input;                   // `upper`'s values at the last successful factorisation
   std::vector<int> m_outer, m_inner;             // `upper`'s pattern (compressed columns)
-  Eigen::Index m_n = 0;
   std::vector<double> m_pool;                    // L's blocks
   int m_uniform = 0;                             // the common block size, 0 when they differ
   double m_flops = 0, m_nonzeros = 0;

@@ -10,7 +10,6 @@
 /// compute chunks k + 1, k + 2, …, so the serial addition overlaps the parallel work instead
 /// of following it.
 
-#include <tbb/info.h>
 #include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 
