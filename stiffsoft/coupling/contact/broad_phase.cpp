@@ -52,17 +52,22 @@ PrimitiveBoxes primitive_boxes(const CollisionMesh& mesh, const Eigen::MatrixX3d
   return boxes;
 }
 
-/// The primitives in [begin, end) whose box meets `region`, keyed along `axis`.
+/// The primitives in [begin, end) whose box meets `region`, keyed along `axis`, in id order.
 std::vector<Keyed> inside(const std::vector<Box>& boxes, int begin, int end, const Box& region,
                           int axis) {
   std::vector<Keyed> out;
   for (int i = begin; i < end; ++i)
     if (boxes[i].overlaps(region)) out.push_back({boxes[i].lo[axis], boxes[i].hi[axis], i});
-  std::sort(out.begin(), out.end(), [](const Keyed& a, const Keyed& b) { return a.lo < b.lo; });
   return out;
 }
 
-/// Sort-and-sweep of two sorted lists: calls emit(a, b) for every pair whose full boxes overlap.
+/// The list sorted by the low end of its key, as sweep() needs it.
+std::vector<Keyed> sorted(std::vector<Keyed> list) {
+  std::sort(list.begin(), list.end(), [](const Keyed& a, const Keyed& b) { return a.lo < b.lo; });
+  return list;
+}
+
+/// Sort-and-sweep of two lists sorted by sorted(): calls emit(a, b) for every pair whose full boxes overlap.
 template <class Emit>
 void sweep(const std::vector<Keyed>& A, const std::vector<Box>& boxes_a, const std::vector<Keyed>& B,
            const std::vector<Box>& boxes_b, Emit&& emit) {
@@ -79,53 +84,75 @@ void sweep(const std::vector<Keyed>& A, const std::vector<Box>& boxes_a, const s
 
 /// Pairs (i, j) of the lists A and B (ids into boxes_a, boxes_b) whose boxes overlap, through a
 /// uniform grid over `region`: every box goes into the cells it meets, and a pair is tested in
-/// the cell that holds the low corner of its two boxes' intersection only, so once. For a
-/// body against itself, where a sweep along one axis of a flat body meets most of the body at
-/// every step. Calls emit(i, j) in cell order, then list order: fixed by the boxes.
+/// the cell that holds the low corner of its two boxes' intersection only, so once. That cell
+/// is the componentwise largest of the two boxes' low-corner cells, so it is found from
+/// integers kept per cell member. When A and B are the same list (a body against itself),
+/// each unordered pair is tested once and emitted as (i, j) with i < j. For a body against
+/// itself, where a sweep along one axis of a flat body meets most of the body at every step.
+/// Calls emit(i, j) in cell order, then list order: fixed by the boxes.
 template <class Emit>
 void grid_pairs(const std::vector<Keyed>& A, const std::vector<Box>& boxes_a, const std::vector<Keyed>& B,
                 const std::vector<Box>& boxes_b, const Box& region, Emit&& emit) {
   if (A.empty() || B.empty()) return;
-  // Cells about twice the mean box, at most ~2 cells per box in all.
+  const bool same = &A == &B && &boxes_a == &boxes_b;
+  // Cells about the mean box (measured on cube_on_mattress: a cell twice that tests more pairs,
+  // one of 0.7 fills more cells), at most a few cells per box in all.
   Eigen::Array3d mean = Eigen::Array3d::Zero();
   for (const Keyed& k : A) mean += boxes_a[k.id].hi - boxes_a[k.id].lo;
   for (const Keyed& k : B) mean += boxes_b[k.id].hi - boxes_b[k.id].lo;
   const Eigen::Array3d extent = (region.hi - region.lo).max(1e-300);
   const double boxes = double(A.size() + B.size());
-  double cell = std::max(2.0 * mean.maxCoeff() / boxes, std::cbrt(extent.prod() / (2.0 * boxes)));
+  double cell = std::max(mean.maxCoeff() / boxes, std::cbrt(extent.prod() / (2.0 * boxes)));
   if (!(cell > 0.0)) cell = extent.maxCoeff();
   const auto dims_for = [&](double h) -> Eigen::Array3d { return (extent / h).min(1e6).ceil().max(1.0); };
   while (dims_for(cell).prod() > 4.0 * boxes + 64.0) cell *= 2.0;  // flat or empty boxes
   const Eigen::Array3i dims = dims_for(cell).template cast<int>();
-  const auto cell_of = [&](const Eigen::Array3d& p) {
+  const auto cell_of = [&](const Eigen::Array3d& p) -> Eigen::Array3i {
     return ((p - region.lo) / cell).floor().cast<int>().max(0).min(dims - 1);
   };
   const auto flat = [&](const Eigen::Array3i& c) { return (c[2] * dims[1] + c[1]) * dims[0] + c[0]; };
-  // Cell lists by a counting sort: (cell, position in the list) for A and B.
+  /// Cell lists by a counting sort: each member's id and the cell of its box's low corner.
+  struct Member {
+    int id;
+    Eigen::Array3i lo_cell;
+  };
   const auto bucket = [&](const std::vector<Keyed>& list, const std::vector<Box>& boxes,
-                          std::vector<int>& offsets, std::vector<int>& members) {
+                          std::vector<int>& offsets, std::vector<Member>& members) {
     offsets.assign(std::size_t(dims.prod()) + 1, 0);
-    const auto each_cell = [&](const Box& b, auto&& f) {
-      const Eigen::Array3i lo = cell_of(b.lo), hi = cell_of(b.hi);
+    const auto each_cell = [&](const Eigen::Array3i& lo, const Box& b, auto&& f) {
+      const Eigen::Array3i hi = cell_of(b.hi);
       for (int k = lo[2]; k <= hi[2]; ++k)
         for (int j = lo[1]; j <= hi[1]; ++j)
           for (int i = lo[0]; i <= hi[0]; ++i) f(flat({i, j, k}));
     };
-    for (const Keyed& e : list) each_cell(boxes[e.id], [&](int c) { ++offsets[c + 1]; });
+    for (const Keyed& e : list) each_cell(cell_of(boxes[e.id].lo), boxes[e.id], [&](int c) { ++offsets[c + 1]; });
     for (std::size_t c = 1; c < offsets.size(); ++c) offsets[c] += offsets[c - 1];
     members.resize(std::size_t(offsets.back()));
     std::vector<int> next(offsets.begin(), offsets.end() - 1);
-    for (const Keyed& e : list) each_cell(boxes[e.id], [&](int c) { members[next[c]++] = e.id; });
+    for (const Keyed& e : list) {
+      const Eigen::Array3i lo = cell_of(boxes[e.id].lo);
+      each_cell(lo, boxes[e.id], [&](int c) { members[next[c]++] = {e.id, lo}; });
+    }
   };
-  std::vector<int> offsets_a, members_a, offsets_b, members_b;
+  std::vector<int> offsets_a, offsets_b;
+  std::vector<Member> members_a, members_b;
   bucket(A, boxes_a, offsets_a, members_a);
-  bucket(B, boxes_b, offsets_b, members_b);
-  for (int c = 0; c + 1 < int(offsets_a.size()); ++c)
-    for (int p = offsets_a[c]; p < offsets_a[c + 1]; ++p)
-      for (int q = offsets_b[c]; q < offsets_b[c + 1]; ++q) {
-        const Box& a = boxes_a[members_a[p]];
-        const Box& b = boxes_b[members_b[q]];
-        if (a.overlaps(b) && flat(cell_of(a.lo.max(b.lo))) == c) emit(members_a[p], members_b[q]);
+  if (!same) bucket(B, boxes_b, offsets_b, members_b);
+  const std::vector<int>& offsets_other = same ? offsets_a : offsets_b;
+  const std::vector<Member>& members_other = same ? members_a : members_b;
+  for (int k = 0; k < dims[2]; ++k)
+    for (int j = 0; j < dims[1]; ++j)
+      for (int i = 0; i < dims[0]; ++i) {
+        const Eigen::Array3i here(i, j, k);
+        const int c = flat(here);
+        for (int p = offsets_a[c]; p < offsets_a[c + 1]; ++p) {
+          const Member& a = members_a[p];
+          for (int q = same ? p + 1 : offsets_other[c]; q < offsets_other[c + 1]; ++q) {
+            const Member& b = members_other[q];
+            if ((a.lo_cell.max(b.lo_cell) == here).all() && boxes_a[a.id].overlaps(boxes_b[b.id]))
+              same ? emit(std::min(a.id, b.id), std::max(a.id, b.id)) : emit(a.id, b.id);
+          }
+        }
       }
 }
 
@@ -175,26 +202,26 @@ Candidates broad_phase(const Model& model, const Eigen::MatrixX3d& x0, const Eig
     int axis;
     (region.hi - region.lo).maxCoeff(&axis);
     const auto va = inside(boxes.vertex, A.vertex_begin, A.vertex_end, region, axis);
-    const auto vb = inside(boxes.vertex, B.vertex_begin, B.vertex_end, region, axis);
     const auto fa = inside(boxes.face, A.face_begin, A.face_end, region, axis);
-    const auto fb = inside(boxes.face, B.face_begin, B.face_end, region, axis);
     const auto ea = inside(boxes.edge, A.edge_begin, A.edge_end, region, axis);
-    const auto eb = inside(boxes.edge, B.edge_begin, B.edge_end, region, axis);
     if (a == b) {
       // Self-contact of a soft body: every pair once, none that shares a vertex.
       grid_pairs(va, boxes.vertex, fa, boxes.face, region, [&](int v, int f) {
         if ((mesh.F.row(f).array() != v).all()) out.vertex_face.push_back({v, f});
       });
       grid_pairs(ea, boxes.edge, ea, boxes.edge, region, [&](int e, int g) {
-        if (e < g && mesh.E(e, 0) != mesh.E(g, 0) && mesh.E(e, 0) != mesh.E(g, 1) &&
+        if (mesh.E(e, 0) != mesh.E(g, 0) && mesh.E(e, 0) != mesh.E(g, 1) &&
             mesh.E(e, 1) != mesh.E(g, 0) && mesh.E(e, 1) != mesh.E(g, 1))
           out.edge_edge.push_back({e, g});
       });
       return;
     }
-    sweep(va, boxes.vertex, fb, boxes.face, [&](int v, int f) { out.vertex_face.push_back({v, f}); });
-    sweep(vb, boxes.vertex, fa, boxes.face, [&](int v, int f) { out.vertex_face.push_back({v, f}); });
-    sweep(ea, boxes.edge, eb, boxes.edge,
+    const auto vb = sorted(inside(boxes.vertex, B.vertex_begin, B.vertex_end, region, axis));
+    const auto fb = sorted(inside(boxes.face, B.face_begin, B.face_end, region, axis));
+    const auto eb = sorted(inside(boxes.edge, B.edge_begin, B.edge_end, region, axis));
+    sweep(sorted(va), boxes.vertex, fb, boxes.face, [&](int v, int f) { out.vertex_face.push_back({v, f}); });
+    sweep(vb, boxes.vertex, sorted(fa), boxes.face, [&](int v, int f) { out.vertex_face.push_back({v, f}); });
+    sweep(sorted(ea), boxes.edge, eb, boxes.edge,
           [&](int e, int g) { out.edge_edge.push_back({std::min(e, g), std::max(e, g)}); });
   };
   Candidates all;
