@@ -28,9 +28,9 @@ void BlockHessian::clear() {
 }
 
 BlockHessian::Slot& BlockHessian::live_slot(int row, int column) {
-  for (int k : m_row_slots[row]) {
-    Slot& s = m_slots[k];
-    if (s.column != column) continue;
+  for (const RowEntry& e : m_row_slots[row]) {
+    if (e.column != column) continue;
+    Slot& s = m_slots[e.slot];
     if (!live(s)) {
       m_grew = m_grew || s.generation + 1 != m_generation;
       s.generation = m_generation;
@@ -39,7 +39,7 @@ BlockHessian::Slot& BlockHessian::live_slot(int row, int column) {
     }
     return s;
   }
-  m_row_slots[row].push_back(int(m_slots.size()));
+  m_row_slots[row].push_back({column, int(m_slots.size())});
   m_slots.push_back({row, column, m_pool.size(), m_generation});
   m_pool.resize(m_pool.size() + std::size_t(m_blocks[row].size) * m_blocks[column].size, 0.0);
   m_grew = true;
@@ -94,9 +94,9 @@ BlockHessian::ColumnSlots BlockHessian::column_slots() const {
   out.slots.resize(std::size_t(out.offsets.back()));
   std::vector<int> next(out.offsets.begin(), out.offsets.end() - 1);
   // Rows in ascending order, so each column's slots come out sorted by row.
-  for (const std::vector<int>& row : m_row_slots)
-    for (int k : row)
-      if (live(m_slots[k])) out.slots[std::size_t(next[m_slots[k].column]++)] = k;
+  for (const std::vector<RowEntry>& row : m_row_slots)
+    for (const RowEntry& e : row)
+      if (live(m_slots[e.slot])) out.slots[std::size_t(next[e.column]++)] = e.slot;
   return out;
 }
 

@@ -82,7 +82,11 @@ class BlockHessian {
   std::vector<std::size_t> m_diagonal;        // pool offset of block (i, i)
   std::size_t m_diagonal_size = 0;            // the diagonal blocks fill the pool's start
   std::vector<Slot> m_slots;                  // every off-diagonal block ever stored
-  std::vector<std::vector<int>> m_row_slots;  // per block row: indices into m_slots
+  /// A row's stored block: its column beside its slot, so that finding it reads one array.
+  struct RowEntry {
+    int column, slot;
+  };
+  std::vector<std::vector<RowEntry>> m_row_slots;  // per block row: its slots, in creation order
   std::uint64_t m_generation = 1;               // the current assembly
   std::size_t m_live = 0, m_previous_live = 0;  // live slots now / at the end of the previous assembly
   bool m_grew = false;                          // a slot not live in the previous assembly is live now
