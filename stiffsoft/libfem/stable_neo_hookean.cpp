@@ -2,7 +2,6 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
-#include <array>
 #include <cmath>
 
 #include <stiffsoft/libfem/determinant_derivatives.hpp>
@@ -52,20 +51,23 @@ Matrix9d StableNeoHookean::dPdF_projected(const Eigen::Matrix3d& F) const {
     add(m_mu + c * s(k), a - b);  // twist
     add(m_mu - c * s(k), a + b);  // flip
   }
-  // ∂²ψ/∂σ² = μ̂ I + λ̂ ∇J ∇Jᵀ + λ̂ (J − α) ∇²J with J = σ₀σ₁σ₂.
+  // ∂²ψ/∂σ² = μ̂ I + λ̂ ∇J ∇Jᵀ + λ̂ (J − α) ∇²J with J = σ₀σ₁σ₂, acting on the scalings
+  // S = [vec(u₀v₀ᵀ) vec(u₁v₁ᵀ) vec(u₂v₂ᵀ)]: their block is S A₊ Sᵀ, A₊ the clamped A.
   const Eigen::Vector3d grad_J(s(1) * s(2), s(0) * s(2), s(0) * s(1));
   Eigen::Matrix3d A = m_mu * Eigen::Matrix3d::Identity() + m_lambda * grad_J * grad_J.transpose();
   for (const auto& [i, j, k] : pairs) {
     A(i, j) += c * s(k);
     A(j, i) += c * s(k);
   }
-  std::array<Eigen::Matrix3d, 3> uv;  // the scalings u_i v_iᵀ
-  for (int i = 0; i < 3; ++i) uv[i] = svd.U.col(i) * svd.V.col(i).transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(A);
-  for (int m = 0; m < 3; ++m) {
-    const Eigen::Vector3d z = es.eigenvectors().col(m);
-    add(es.eigenvalues()(m), z(0) * uv[0] + z(1) * uv[1] + z(2) * uv[2]);
+  // Positive definite (Sylvester's leading minors), as at every moderate strain: A₊ = A.
+  const bool definite = A(0, 0) > 0 && A(0, 0) * A(1, 1) - A(0, 1) * A(0, 1) > 0 && A.determinant() > 0;
+  if (!definite) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(A);
+    A = es.eigenvectors() * es.eigenvalues().cwiseMax(0.0).asDiagonal() * es.eigenvectors().transpose();
   }
+  Eigen::Matrix<double, 9, 3> S;
+  for (int i = 0; i < 3; ++i) S.col(i) = vec(svd.U.col(i) * svd.V.col(i).transpose());
+  H.noalias() += S * A * S.transpose();
   return H;
 }
 
