@@ -363,6 +363,36 @@ TEST(LinearSolver, ReportsAnIndefiniteMatrixInsteadOfReturningADirection) {
   }
 }
 
+TEST(PetscSolver, ShiftsAnIncompleteCholeskyThatBreaksDownInsteadOfFallingBack) {
+  // Kershaw's matrix (J. Comput. Phys. 26, 1978) is positive definite, yet its incomplete
+  // Cholesky ICC(0) meets a negative pivot. As 3×3 blocks (K ⊗ I₃) PETSc's block ICC applies no
+  // Manteuffel shift of its own: CG stops at once with an indefinite preconditioner, and the
+  // solver must rebuild it from H + α diag(H) rather than hand the solve to CHOLMOD.
+  Eigen::Matrix4d K;
+  K << 3, -2, 0, 2, -2, 3, -2, 0, 0, -2, 3, -2, 2, 0, -2, 3;
+  ASSERT_GT(Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d>(K).eigenvalues().minCoeff(), 0);
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i; j < 4; ++j)
+      if (K(i, j) != 0)
+        for (int c = 0; c < 3; ++c) t.emplace_back(3 * i + c, 3 * j + c, K(i, j));
+  Eigen::SparseMatrix<double> A(12, 12);
+  A.setFromTriplets(t.begin(), t.end());
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(12, 1, 2);
+  PetscSolverSettings settings;  // CG + ICC(0), CHOLMOD as the fallback
+  ASSERT_EQ(settings.pc_type, "icc");
+  ASSERT_EQ(settings.fallback, KrylovFallback::Cholmod);
+  PetscSolver solver(settings);
+  solver.set_block_sizes({3, 3, 3, 3});
+  solver.analyze_pattern(A);
+  ASSERT_TRUE(solver.factorize(A));
+  const Eigen::VectorXd p = solver.solve(b);
+  const LinearSolveReport& r = solver.last_report();
+  EXPECT_TRUE(r.converged()) << r.reason;
+  EXPECT_FALSE(r.fallback_used) << r.primary_failure;
+  EXPECT_LE((b - A.selfadjointView<Eigen::Upper>() * p).norm() / b.norm(), settings.relative_tolerance);
+}
+
 TEST(PetscSolver, ReportsTheIterationCapAndFallsBackToCholmod) {
   const LinearSystem s = load_linear_system(kDataDir, kSystems[1]);
   for (const KrylovFallback fallback : {KrylovFallback::None, KrylovFallback::Cholmod}) {

@@ -130,6 +130,8 @@ struct PetscSolver::Impl {
   int rank = 0, size = 1;
   KSP ksp = nullptr;
   Mat A = nullptr;
+  Mat P = nullptr;     // A + α diag(A): the preconditioner's matrix once ICC of A broke down
+  double pc_shift = 0;  // that α; 0 while the preconditioner is built from A itself
   Vec x = nullptr, b = nullptr, r = nullptr, x_all = nullptr;
   VecScatter to_all = nullptr;
   std::optional<BlockSparsePattern> pattern;
@@ -152,6 +154,7 @@ struct PetscSolver::Impl {
   void destroy_matrix() {
     if (!PetscSession::running()) return;
     MatDestroy(&A);
+    MatDestroy(&P);
     VecDestroy(&x);
     VecDestroy(&b);
     VecDestroy(&r);
@@ -175,6 +178,39 @@ struct PetscSolver::Impl {
     KSPType t = nullptr;
     STIFFSOFT_PETSC(KSPGetType(ksp, &t));
     return t ? t : "";
+  }
+
+  /// The preconditioner's set-up failure on any rank (PC_NOERROR when none): the lowest
+  /// non-zero code, PC_SETUP_ERROR being −1.
+  int preconditioner_failure() const {
+    PCFailedReason reason = PC_NOERROR;
+    STIFFSOFT_PETSC(PCGetFailedReasonRank(pc(), &reason));
+    std::array<int, 2> codes{int(reason), -int(reason)};
+    MPI_Allreduce(MPI_IN_PLACE, codes.data(), 2, MPI_INT, MPI_MAX, comm);
+    return codes[1] > 0 ? -codes[1] : codes[0];
+  }
+
+  /// Rebuilds the preconditioner from P = A + α diag(A) with the next α (1e-3, 1e-2, … 1), for
+  /// an ICC(0) that broke down or came out indefinite on a positive definite H: PETSc applies
+  /// its Manteuffel shift to point (block size 1) matrices only, not to our 3×3-block ones.
+  /// CG still solves with A. False when the preconditioner is not ICC or α would pass 1.
+  bool shift_preconditioner() {
+    if (pc_type() != PCICC) return false;
+    for (double alpha = pc_shift == 0 ? 1e-3 : 10 * pc_shift; alpha <= 1; alpha *= 10) {
+      if (P) STIFFSOFT_PETSC(MatCopy(A, P, SAME_NONZERO_PATTERN));
+      else STIFFSOFT_PETSC(MatDuplicate(A, MAT_COPY_VALUES, &P));
+      Vec d = nullptr;
+      STIFFSOFT_PETSC(VecDuplicate(x, &d));
+      STIFFSOFT_PETSC(MatGetDiagonal(A, d));
+      STIFFSOFT_PETSC(VecScale(d, alpha));
+      STIFFSOFT_PETSC(MatDiagonalSet(P, d, ADD_VALUES));
+      STIFFSOFT_PETSC(VecDestroy(&d));
+      STIFFSOFT_PETSC(KSPSetOperators(ksp, A, P));
+      STIFFSOFT_PETSC(KSPSetUp(ksp));
+      pc_shift = alpha;
+      if (preconditioner_failure() == int(PC_NOERROR)) return true;
+    }
+    return false;
   }
 
   /// The near-null space of GAMG: the three translations (p of a 12-block, a 3-block itself).
@@ -414,13 +450,9 @@ bool PetscSolver::factorize(const Eigen::SparseMatrix<double>& upper) {
   if (m.setup_failure.empty()) {
     STIFFSOFT_PETSC(KSPSetOperators(m.ksp, m.A, m.A));
     STIFFSOFT_PETSC(KSPSetUp(m.ksp));
-    PCFailedReason reason = PC_NOERROR;
-    STIFFSOFT_PETSC(PCGetFailedReasonRank(m.pc(), &reason));
-    // Any rank's failure is everyone's: the lowest non-zero code (PC_SETUP_ERROR is −1).
-    std::array<int, 2> codes{int(reason), -int(reason)};
-    MPI_Allreduce(MPI_IN_PLACE, codes.data(), 2, MPI_INT, MPI_MAX, m.comm);
-    const int code = codes[1] > 0 ? -codes[1] : codes[0];
-    if (code != int(PC_NOERROR))
+    m.pc_shift = 0;
+    const int code = m.preconditioner_failure();
+    if (code != int(PC_NOERROR) && !m.shift_preconditioner())
       m.setup_failure = std::string("preconditioner set-up failed: ") + PCFailedReasons[code];
   }
   bool ok = true;
@@ -479,23 +511,31 @@ Eigen::VectorXd PetscSolver::solve(const Eigen::VectorXd& rhs) {
     return b_norm > 0 ? double(r_norm / b_norm) : double(r_norm);
   };
   KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
-  double rtol = m.rtol, residual = 0;
+  double residual = 0;
   int iterations = 0;
   // Pass 0 from p = 0; further passes (at most 4) continue from p when the Krylov method's own
   // stopping test (a preconditioned norm for MINRES) was met but the true residual is still
   // above η, each with the tolerance cut by 10 η / residual.
-  for (int pass = 0; pass < 5; ++pass) {
-    STIFFSOFT_PETSC(KSPSetTolerances(m.ksp, rtol, atol, dtol, max_its));
-    STIFFSOFT_PETSC(KSPSetInitialGuessNonzero(m.ksp, pass > 0 ? PETSC_TRUE : PETSC_FALSE));
-    STIFFSOFT_PETSC(KSPSolve(m.ksp, m.b, m.x));
-    PetscInt its = 0;
-    STIFFSOFT_PETSC(KSPGetIterationNumber(m.ksp, &its));
-    STIFFSOFT_PETSC(KSPGetConvergedReason(m.ksp, &reason));
-    iterations += int(its);
-    residual = true_residual();
-    if (reason <= 0 || residual <= m.rtol || !std::isfinite(residual)) break;
-    rtol = std::max(rtol * 0.1 * m.rtol / residual, 1e-15);
-  }
+  const auto krylov = [&] {
+    double rtol = m.rtol;
+    for (int pass = 0; pass < 5; ++pass) {
+      STIFFSOFT_PETSC(KSPSetTolerances(m.ksp, rtol, atol, dtol, max_its));
+      STIFFSOFT_PETSC(KSPSetInitialGuessNonzero(m.ksp, pass > 0 ? PETSC_TRUE : PETSC_FALSE));
+      STIFFSOFT_PETSC(KSPSolve(m.ksp, m.b, m.x));
+      PetscInt its = 0;
+      STIFFSOFT_PETSC(KSPGetIterationNumber(m.ksp, &its));
+      STIFFSOFT_PETSC(KSPGetConvergedReason(m.ksp, &reason));
+      iterations += int(its);
+      residual = true_residual();
+      if (reason <= 0 || residual <= m.rtol || !std::isfinite(residual)) break;
+      rtol = std::max(rtol * 0.1 * m.rtol / residual, 1e-15);
+    }
+  };
+  krylov();
+  // An ICC that came out indefinite (or failed when applied) is rebuilt shifted, and CG
+  // starts again; the shift stays for the solves until the next factorize().
+  while ((reason == KSP_DIVERGED_INDEFINITE_PC || reason == KSP_DIVERGED_PC_FAILED) && m.shift_preconditioner())
+    krylov();
   m_report.iterations = iterations;
   m_report.relative_residual = residual;
   m_report.status = status_of(reason);
