@@ -67,7 +67,7 @@ Matrix9d StableNeoHookean::dPdF_projected(const Eigen::Matrix3d& F) const {
   }
   Eigen::Matrix<double, 9, 3> S;
   for (int i = 0; i < 3; ++i) S.col(i) = vec(svd.U.col(i) * svd.V.col(i).transpose());
-  H.noalias() += S * A * S.transpose();
+  H.noalias() += (S * A).lazyProduct(S.transpose());  // coefficient-wise: 9×3 by 3×9 is too small for GEMM
   return H;
 }
 

@@ -48,6 +48,16 @@ BlockHessian::Slot& BlockHessian::live_slot(int row, int column) {
 }
 
 void BlockHessian::add(int i, int j, const Eigen::Ref<const Eigen::MatrixXd>& H) {
+  if (m_blocks[i].size == 3 && m_blocks[j].size == 3) {  // two soft nodes: fixed-size code
+    const Eigen::Map<const Eigen::Matrix3d, 0, Eigen::OuterStride<>> h(H.data(), Eigen::OuterStride<>(H.outerStride()));
+    // The slot first: creating it may move the pool.
+    const std::size_t at = i == j ? m_diagonal[i] : live_slot(std::min(i, j), std::max(i, j)).at;
+    if (i <= j)
+      Eigen::Map<Eigen::Matrix3d>(m_pool.data() + at) += h;
+    else
+      Eigen::Map<Eigen::Matrix3d>(m_pool.data() + at) += h.transpose();
+    return;
+  }
   if (i == j) {
     block_at(m_diagonal[i], i, i) += H;
     return;

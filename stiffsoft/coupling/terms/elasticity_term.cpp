@@ -54,7 +54,10 @@ void ElasticityTerm::add_hessian(const Configuration& c, BlockHessian& H) const 
     const Eigen::VectorXd x = body_positions(body, c.q);
     assemble_in_chunks<fem::ElementHessian>(
         std::size_t(body.energy->num_elements()),
-        [&](std::size_t e, fem::ElementHessian& out) { out = body.energy->element_hessian(int(e), x, true); },
+        [&](std::size_t e, fem::ElementHessian& out) {
+          out = body.energy->element_hessian(int(e), x, true);
+          out.H *= m_scale;
+        },
         [&](std::size_t, const fem::ElementHessian& eh) {
           std::array<int, 4> block;
           for (int a = 0; a < 4; ++a) block[a] = nodes.block[body.node_begin + eh.nodes[a]];
@@ -62,8 +65,7 @@ void ElasticityTerm::add_hessian(const Configuration& c, BlockHessian& H) const 
             if (block[a] < 0) continue;
             for (int b = 0; b < 4; ++b) {
               if (block[b] < block[a]) continue;  // each unordered pair once; add() keeps the upper triangle
-              const Eigen::Matrix3d Hab = m_scale * eh.H.block<3, 3>(3 * a, 3 * b);
-              H.add(block[a], block[b], Hab);
+              H.add(block[a], block[b], eh.H.block<3, 3>(3 * a, 3 * b));
             }
           }
         });
