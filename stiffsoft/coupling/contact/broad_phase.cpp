@@ -85,8 +85,9 @@ void sweep(const std::vector<Keyed>& A, const std::vector<Box>& boxes_a, const s
 /// Pairs (i, j) of the lists A and B (ids into boxes_a, boxes_b) whose boxes overlap, through a
 /// uniform grid over `region`: every box goes into the cells it meets, and a pair is tested in
 /// the cell that holds the low corner of its two boxes' intersection only, so once. That cell
-/// is the componentwise largest of the two boxes' low-corner cells, so it is found from
-/// integers kept per cell member. When A and B are the same list (a body against itself),
+/// is the componentwise largest of the two boxes' low-corner cells: along each axis it is the
+/// first cell of one of the two boxes, so three bits kept per cell member (is this the box's
+/// first cell along x, y, z) decide it. When A and B are the same list (a body against itself),
 /// each unordered pair is tested once and emitted as (i, j) with i < j. For a body against
 /// itself, where a sweep along one axis of a flat body meets most of the body at every step.
 /// Calls emit(i, j) in cell order, then list order: fixed by the boxes.
@@ -111,28 +112,26 @@ void grid_pairs(const std::vector<Keyed>& A, const std::vector<Box>& boxes_a, co
     return ((p - region.lo) / cell).floor().cast<int>().max(0).min(dims - 1);
   };
   const auto flat = [&](const Eigen::Array3i& c) { return (c[2] * dims[1] + c[1]) * dims[0] + c[0]; };
-  /// Cell lists by a counting sort: each member's id and the cell of its box's low corner.
+  /// Cell lists by a counting sort: each member's id, and in bit k whether the cell is the
+  /// box's first along axis k.
   struct Member {
-    int id;
-    Eigen::Array3i lo_cell;
+    int id, first;
   };
   const auto bucket = [&](const std::vector<Keyed>& list, const std::vector<Box>& boxes,
                           std::vector<int>& offsets, std::vector<Member>& members) {
     offsets.assign(std::size_t(dims.prod()) + 1, 0);
-    const auto each_cell = [&](const Eigen::Array3i& lo, const Box& b, auto&& f) {
-      const Eigen::Array3i hi = cell_of(b.hi);
+    const auto each_cell = [&](const Box& b, auto&& f) {
+      const Eigen::Array3i lo = cell_of(b.lo), hi = cell_of(b.hi);
       for (int k = lo[2]; k <= hi[2]; ++k)
         for (int j = lo[1]; j <= hi[1]; ++j)
-          for (int i = lo[0]; i <= hi[0]; ++i) f(flat({i, j, k}));
+          for (int i = lo[0]; i <= hi[0]; ++i)
+            f(flat({i, j, k}), int(i == lo[0]) | int(j == lo[1]) << 1 | int(k == lo[2]) << 2);
     };
-    for (const Keyed& e : list) each_cell(cell_of(boxes[e.id].lo), boxes[e.id], [&](int c) { ++offsets[c + 1]; });
+    for (const Keyed& e : list) each_cell(boxes[e.id], [&](int c, int) { ++offsets[c + 1]; });
     for (std::size_t c = 1; c < offsets.size(); ++c) offsets[c] += offsets[c - 1];
     members.resize(std::size_t(offsets.back()));
     std::vector<int> next(offsets.begin(), offsets.end() - 1);
-    for (const Keyed& e : list) {
-      const Eigen::Array3i lo = cell_of(boxes[e.id].lo);
-      each_cell(lo, boxes[e.id], [&](int c) { members[next[c]++] = {e.id, lo}; });
-    }
+    for (const Keyed& e : list) each_cell(boxes[e.id], [&](int c, int first) { members[next[c]++] = {e.id, first}; });
   };
   std::vector<int> offsets_a, offsets_b;
   std::vector<Member> members_a, members_b;
@@ -140,20 +139,15 @@ void grid_pairs(const std::vector<Keyed>& A, const std::vector<Box>& boxes_a, co
   if (!same) bucket(B, boxes_b, offsets_b, members_b);
   const std::vector<int>& offsets_other = same ? offsets_a : offsets_b;
   const std::vector<Member>& members_other = same ? members_a : members_b;
-  for (int k = 0; k < dims[2]; ++k)
-    for (int j = 0; j < dims[1]; ++j)
-      for (int i = 0; i < dims[0]; ++i) {
-        const Eigen::Array3i here(i, j, k);
-        const int c = flat(here);
-        for (int p = offsets_a[c]; p < offsets_a[c + 1]; ++p) {
-          const Member& a = members_a[p];
-          for (int q = same ? p + 1 : offsets_other[c]; q < offsets_other[c + 1]; ++q) {
-            const Member& b = members_other[q];
-            if ((a.lo_cell.max(b.lo_cell) == here).all() && boxes_a[a.id].overlaps(boxes_b[b.id]))
-              same ? emit(std::min(a.id, b.id), std::max(a.id, b.id)) : emit(a.id, b.id);
-          }
-        }
+  for (int c = 0; c + 1 < int(offsets_a.size()); ++c)
+    for (int p = offsets_a[c]; p < offsets_a[c + 1]; ++p) {
+      const Member& a = members_a[p];
+      for (int q = same ? p + 1 : offsets_other[c]; q < offsets_other[c + 1]; ++q) {
+        const Member& b = members_other[q];
+        if ((a.first | b.first) == 7 && boxes_a[a.id].overlaps(boxes_b[b.id]))
+          same ? emit(std::min(a.id, b.id), std::max(a.id, b.id)) : emit(a.id, b.id);
       }
+    }
 }
 
 /// True when the body carries DOFs (an affine body that is not fixed, or a soft body).
