@@ -116,6 +116,35 @@ TEST(ClassifyEdgeEdge, NearlyParallelAndDegenerateSegmentsGiveTheExactDistance) 
   }
 }
 
+TEST(SegmentDistanceLowerBound, NeverExceedsTheDistanceAndIsUsuallyWithinHalfOfIt) {
+  // Random, nearly parallel, collinear, crossing and zero-length segments: the bound is at most
+  // the exact squared distance (to rounding).
+  std::mt19937 rng(14);
+  int tight = 0, trials = 0;
+  const auto check = [&](const Vector3d& a0, const Vector3d& a1, const Vector3d& b0, const Vector3d& b1) {
+    const double exact = segment_segment_squared_distance(a0, a1, b0, b1);
+    const double bound = segment_segment_squared_distance_lower_bound(a0, a1, b0, b1);
+    ASSERT_TRUE(std::isfinite(bound));
+    EXPECT_GE(bound, 0.0);
+    EXPECT_LE(bound, exact + 1e-13 * std::max(1.0, exact)) << "trial " << trials;
+    tight += bound >= 0.5 * exact;
+    ++trials;
+  };
+  for (int trial = 0; trial < 3000; ++trial)
+    check(random_point(rng, 1), random_point(rng, 1), random_point(rng, 1), random_point(rng, 1));
+  for (int trial = 0; trial < 1000; ++trial) {
+    const Vector3d a0 = random_point(rng, 1), a1 = random_point(rng, 1);
+    const double tilt = trial % 4 == 0 ? 0.0 : std::pow(10.0, -12.0 + 10.0 * (trial % 7) / 6.0);
+    const double stretch = trial % 5 == 0 ? 0.0 : 0.5 + (trial % 3);
+    const Vector3d b0 = a0 + (trial % 6 == 0 ? 0.3 * (a1 - a0) : random_point(rng, 1));  // some collinear
+    check(a0, a1, b0, b0 + stretch * (a1 - a0) + tilt * random_point(rng, 1));
+  }
+  check(Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0.5, -1, 1e-3), Vector3d(0.5, 1, 1e-3));  // crossing
+  check(Vector3d(0, 0, 0), Vector3d(0, 0, 0), Vector3d(1, 1, 1), Vector3d(1, 1, 1));              // two points
+  // A useful bound, not just 0: most pairs are bounded to within half their distance.
+  EXPECT_GT(tight, trials / 2);
+}
+
 TEST(ClassifyPointTriangle, DegenerateTrianglesGiveTheExactDistance) {
   std::mt19937 rng(14);
   for (int trial = 0; trial < 500; ++trial) {

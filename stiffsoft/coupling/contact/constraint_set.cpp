@@ -85,6 +85,11 @@ std::vector<ContactConstraint> build_constraints(const Model& model, const Eigen
     const auto [ea, eb] = candidates.edge_edge[k];
     const std::array<int, 4> ids{mesh.E(ea, 0), mesh.E(ea, 1), mesh.E(eb, 0), mesh.E(eb, 1)};
     const contact::Vector12d xs = gather(x, ids);
+    // Most candidates of resting piles are far: rejected by the cheap bound first, with a
+    // margin far above its rounding, so the set is the one classification alone gives.
+    if (contact::segment_segment_squared_distance_lower_bound(xs.segment<3>(0), xs.segment<3>(3), xs.segment<3>(6),
+                                                              xs.segment<3>(9)) > (1 + 1e-6) * dhat2)
+      return;
     const contact::Classified c = contact::classify_edge_edge_stencil(xs);
     const double d2 = contact::squared_distance(c.kind, contact::gather_classified(c, xs));
     if (d2 >= dhat2) return;

@@ -4,7 +4,9 @@
 /// the exact point–triangle and segment–segment squared distances built on it.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 
 #include <stiffsoft/coupling/contact/primitive_pair.hpp>
@@ -128,6 +130,30 @@ inline Classified classify_edge_edge(const Eigen::Vector3d& ea0, const Eigen::Ve
   detail::offer_point_edge(best, eb0, ea0, ea1, {2, 0, 1, -1});
   detail::offer_point_edge(best, eb1, ea0, ea1, {3, 0, 1, -1});
   return best.type;
+}
+
+/// Squared distance from the segment (q0, q1) to the line through p with unit direction u, m².
+inline double segment_line_squared_distance(const Eigen::Vector3d& q0, const Eigen::Vector3d& q1,
+                                            const Eigen::Vector3d& p, const Eigen::Vector3d& u) {
+  const Eigen::Vector3d w0 = q0 - p, w1 = q1 - p;
+  const Eigen::Vector3d r0 = w0 - w0.dot(u) * u, dr = (w1 - w1.dot(u) * u) - r0;  // across the line
+  const double dd = dr.squaredNorm();
+  const double t = dd > 0 ? std::clamp(-r0.dot(dr) / dd, 0.0, 1.0) : 0.0;
+  return (r0 + t * dr).squaredNorm();
+}
+
+/// A lower bound of the squared distance between the segments (ea0, ea1) and (eb0, eb1), m²:
+/// the larger of each segment's squared distance to the other's line (0 for a zero-length
+/// segment's line). About a third of classify_edge_edge's work; a pair it puts beyond d̂ is
+/// no contact.
+inline double segment_segment_squared_distance_lower_bound(const Eigen::Vector3d& ea0, const Eigen::Vector3d& ea1,
+                                                           const Eigen::Vector3d& eb0, const Eigen::Vector3d& eb1) {
+  const Eigen::Vector3d a = ea1 - ea0, b = eb1 - eb0;
+  const double aa = a.squaredNorm(), bb = b.squaredNorm();
+  double bound = 0;
+  if (aa > 0) bound = segment_line_squared_distance(eb0, eb1, ea0, a / std::sqrt(aa));
+  if (bb > 0) bound = std::max(bound, segment_line_squared_distance(ea0, ea1, eb0, b / std::sqrt(bb)));
+  return bound;
 }
 
 /// Exact squared distance between point p and the closed triangle (t0, t1, t2), m², any
