@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include <stiffsoft/io/atomic_file.hpp>
+#include <stiffsoft/io/csv_rows.hpp>
 #include <stiffsoft/io/paraview_script.hpp>
 #include <stiffsoft/io/simulation_frame.hpp>
 #include <stiffsoft/scene/scene_loader.hpp>
@@ -22,13 +23,26 @@ const std::filesystem::path& prepared_folder(const std::filesystem::path& out, c
   return out;
 }
 
-/// The scene's fingerprint, checked against the checkpoint's before anything in `out` is
-/// touched: a ResumeError when the scene changed.
-std::uint64_t same_scene(const SceneDescription& scene, const Checkpoint& checkpoint, const std::filesystem::path& out) {
+/// Everything a resume checks before it touches `out`: the scene's fingerprint against the
+/// checkpoint's, and that stats.csv and bodies.csv have this version's header and rows up to
+/// the checkpoint's step (joints.csv its header). A ResumeError then leaves the folder as it
+/// was: the writers, which rewrite their files when destroyed, do not exist yet. Returns the
+/// fingerprint.
+std::uint64_t checked_resume(const SceneDescription& scene, const Checkpoint& checkpoint, const std::filesystem::path& out) {
   const std::uint64_t fingerprint = scene_fingerprint(scene);
   if (fingerprint != checkpoint.scene_fingerprint)
     throw ResumeError(out.string() + ": the scene (its settings or a mesh file) changed since the checkpoint; " +
                       "run it again without --resume, into a new folder");
+  const int step = checkpoint.state.step;
+  const auto reaches = [&](const std::filesystem::path& file, const std::vector<std::string>& columns) {
+    const int last = csv_rows_through_step(file, columns, step).last_step;
+    if (last != step)
+      throw ResumeError(file.string() + ": holds steps up to " + std::to_string(last) + ", the checkpoint is at step " +
+                        std::to_string(step) + " (damaged output folder)");
+  };
+  reaches(out / "stats.csv", step_stats_column_names());
+  reaches(out / "bodies.csv", body_state_columns());
+  if (!scene.joints.empty()) csv_rows_through_step(out / "joints.csv", Recorder::joint_columns(), step);
   return fingerprint;
 }
 
@@ -71,7 +85,7 @@ Recorder::Recorder(const std::filesystem::path& out, const SceneDescription& sce
                    const Checkpoint& checkpoint, int checkpoint_every)
     : m_sim(sim),
       m_out(out),
-      m_scene_fingerprint(same_scene(scene, checkpoint, out)),
+      m_scene_fingerprint(checked_resume(scene, checkpoint, out)),
       m_checkpoint_every(checkpoint_every),
       m_x0(sim.surface()),
       m_frame_dt(scene.output.frame_dt.value()),
@@ -82,13 +96,8 @@ Recorder::Recorder(const std::filesystem::path& out, const SceneDescription& sce
   if (sim.time() != 0) throw std::invalid_argument("Recorder: a run is resumed into a simulation at t = 0");
   remove_stale_temporaries(out);  // a killed writer's half-written files
   const int step = checkpoint.state.step;
-  const auto reached = [&](int last, const std::filesystem::path& file) {
-    if (last != step)
-      throw ResumeError(file.string() + ": holds steps up to " + std::to_string(last) + ", the checkpoint is at step " +
-                        std::to_string(step) + " (damaged output folder)");
-  };
-  reached(m_stats.reload(step), out / "stats.csv");
-  reached(m_bodies.reload(step), out / "bodies.csv");
+  m_stats.reload(step);  // checked by checked_resume()
+  m_bodies.reload(step);
   if (!scene.joints.empty()) {
     m_joints.emplace(out / "joints.csv", joint_columns());
     m_joints->reload(step);

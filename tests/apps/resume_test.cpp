@@ -1,6 +1,7 @@
 /// @file `stiffsoft run --resume`: a run killed with SIGKILL and resumed writes exactly the
 /// files of the uninterrupted run (a rigid pile, a hybrid scene with BDF-2 and friction, a
-/// jointed ragdoll), and a changed scene, a missing or a damaged checkpoint give clear errors.
+/// jointed ragdoll), and a changed scene, another version's files, a missing or a damaged
+/// checkpoint give clear errors and leave the folder as it was.
 
 #include <gtest/gtest.h>
 
@@ -144,7 +145,7 @@ TEST(Resume, KilledHybridBdf2SceneWithFrictionResumesToTheSameFiles) {
 
 TEST(Resume, KilledJointedSceneResumesToTheSameFiles) { expect_resume_matches(kScenes / "ragdoll_steps.json", 240, 10); }
 
-TEST(Resume, RefusesAChangedSceneAMissingAndADamagedCheckpoint) {
+TEST(Resume, RefusesAChangedSceneAnotherVersionsFilesAMissingAndADamagedCheckpoint) {
   const fs::path dir = fresh_folder("resume_errors");
   const fs::path scene = with_integrator(kScenes / "box_stack.json", "backward_euler", dir);
   const fs::path out = dir / "out";
@@ -157,6 +158,18 @@ TEST(Resume, RefusesAChangedSceneAMissingAndADamagedCheckpoint) {
   EXPECT_EQ(run_stiffsoft("run " + changed.string() + " -o " + out.string() + " --resume", dir / "b.log"), 2);
   EXPECT_NE(read_text(dir / "b.log").find("changed since the checkpoint"), std::string::npos) << read_text(dir / "b.log");
   EXPECT_EQ(listed_frames(out / "box_stack.pvd"), frames) << "a refused resume leaves the folder as it was";
+
+  // stats.csv from a version with other columns: refused, and nothing already written is lost.
+  const std::string stats = read_text(out / "stats.csv"), bodies = read_text(out / "bodies.csv");
+  const std::string pvd = read_text(out / "box_stack.pvd");
+  const std::string older = "step,time,newton_iterations" + stats.substr(stats.find('\n'));
+  std::ofstream(out / "stats.csv", std::ios::binary) << older;
+  EXPECT_EQ(run_stiffsoft("run " + scene.string() + " -o " + out.string() + " --resume", dir / "e.log"), 2);
+  EXPECT_NE(read_text(dir / "e.log").find("not the header this version writes"), std::string::npos) << read_text(dir / "e.log");
+  EXPECT_EQ(read_text(out / "stats.csv"), older);
+  EXPECT_EQ(read_text(out / "bodies.csv"), bodies);
+  EXPECT_EQ(read_text(out / "box_stack.pvd"), pvd);
+  std::ofstream(out / "stats.csv", std::ios::binary) << stats;
 
   std::string bytes = read_text(out / "checkpoint.bin");
   bytes[bytes.size() / 2] ^= 0x40;
