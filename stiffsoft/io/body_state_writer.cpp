@@ -8,7 +8,6 @@
 #include <stdexcept>
 
 #include <stiffsoft/io/atomic_file.hpp>
-#include <stiffsoft/io/csv_rows.hpp>
 
 namespace stiffsoft {
 
@@ -106,12 +105,10 @@ void BodyStateWriter::add_state(int step, const Simulation& sim) {
   dirty_ = true;
 }
 
-int BodyStateWriter::reload(int last_step) {
-  CsvRows rows = csv_rows_through_step(file_, body_state_columns(), last_step);
+void BodyStateWriter::reload(CsvRows rows) {
   rows_ = std::move(rows.text);
   on_disk_ = false;  // the next flush rewrites the file with exactly these rows
   dirty_ = true;
-  return rows.last_step;
 }
 
 void BodyStateWriter::flush() {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <stiffsoft/coupling/solver/simulation.hpp>
+#include <stiffsoft/io/csv_rows.hpp>
 
 namespace stiffsoft {
 
@@ -37,10 +38,9 @@ class BodyStateWriter {
   /// Puts every row so far on disk (header and rows the first time, then appending); throws
   /// std::runtime_error naming the file on I/O failure.
   void flush();
-  /// Continues a resumed run: takes the rows of the file on disk up to step `last_step` as the
-  /// rows so far. Returns the step of the last one (−1: none). Throws ResumeError naming the
-  /// file when it cannot be read or has another header.
-  int reload(int last_step);
+  /// Continues a resumed run: takes `rows` (csv_rows_through_step of this file, read before
+  /// the writer existed) as the rows so far.
+  void reload(CsvRows rows);
 
  private:
   std::filesystem::path file_;  ///< the .csv

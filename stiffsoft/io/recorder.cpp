@@ -23,29 +23,6 @@ const std::filesystem::path& prepared_folder(const std::filesystem::path& out, c
   return out;
 }
 
-/// Everything a resume checks before it touches `out`: the scene's fingerprint against the
-/// checkpoint's, and that stats.csv and bodies.csv have this version's header and rows up to
-/// the checkpoint's step (joints.csv its header). A ResumeError then leaves the folder as it
-/// was: the writers, which rewrite their files when destroyed, do not exist yet. Returns the
-/// fingerprint.
-std::uint64_t checked_resume(const SceneDescription& scene, const Checkpoint& checkpoint, const std::filesystem::path& out) {
-  const std::uint64_t fingerprint = scene_fingerprint(scene);
-  if (fingerprint != checkpoint.scene_fingerprint)
-    throw ResumeError(out.string() + ": the scene (its settings or a mesh file) changed since the checkpoint; " +
-                      "run it again without --resume, into a new folder");
-  const int step = checkpoint.state.step;
-  const auto reaches = [&](const std::filesystem::path& file, const std::vector<std::string>& columns) {
-    const int last = csv_rows_through_step(file, columns, step).last_step;
-    if (last != step)
-      throw ResumeError(file.string() + ": holds steps up to " + std::to_string(last) + ", the checkpoint is at step " +
-                        std::to_string(step) + " (damaged output folder)");
-  };
-  reaches(out / "stats.csv", step_stats_column_names());
-  reaches(out / "bodies.csv", body_state_columns());
-  if (!scene.joints.empty()) csv_rows_through_step(out / "joints.csv", Recorder::joint_columns(), step);
-  return fingerprint;
-}
-
 }  // namespace
 
 const std::vector<std::string>& Recorder::joint_columns() {
@@ -81,11 +58,35 @@ Recorder::Recorder(const std::filesystem::path& out, const SceneDescription& sce
   if (m_checkpoint_every > 0) write_checkpoint();
 }
 
+Recorder::ResumeCheck Recorder::checked_resume(const std::filesystem::path& out, const SceneDescription& scene,
+                                               const Checkpoint& checkpoint) {
+  const std::uint64_t fingerprint = scene_fingerprint(scene);
+  if (fingerprint != checkpoint.scene_fingerprint)
+    throw ResumeError(out.string() + ": the scene (its settings or a mesh file) changed since the checkpoint; " +
+                      "run it again without --resume, into a new folder");
+  const int step = checkpoint.state.step;
+  const auto through_step = [&](const std::filesystem::path& file, const std::vector<std::string>& columns) {
+    CsvRows rows = csv_rows_through_step(file, columns, step);
+    if (rows.last_step != step)
+      throw ResumeError(file.string() + ": holds steps up to " + std::to_string(rows.last_step) +
+                        ", the checkpoint is at step " + std::to_string(step) + " (damaged output folder)");
+    return rows;
+  };
+  ResumeCheck check{fingerprint, through_step(out / "stats.csv", step_stats_column_names()),
+                    through_step(out / "bodies.csv", body_state_columns()), std::nullopt};
+  if (!scene.joints.empty()) check.joints = csv_rows_through_step(out / "joints.csv", joint_columns(), step);
+  return check;
+}
+
 Recorder::Recorder(const std::filesystem::path& out, const SceneDescription& scene, Simulation& sim,
                    const Checkpoint& checkpoint, int checkpoint_every)
+    : Recorder(out, scene, sim, checkpoint, checkpoint_every, checked_resume(out, scene, checkpoint)) {}
+
+Recorder::Recorder(const std::filesystem::path& out, const SceneDescription& scene, Simulation& sim,
+                   const Checkpoint& checkpoint, int checkpoint_every, ResumeCheck check)
     : m_sim(sim),
       m_out(out),
-      m_scene_fingerprint(checked_resume(scene, checkpoint, out)),
+      m_scene_fingerprint(check.scene_fingerprint),
       m_checkpoint_every(checkpoint_every),
       m_x0(sim.surface()),
       m_frame_dt(scene.output.frame_dt.value()),
@@ -95,12 +96,11 @@ Recorder::Recorder(const std::filesystem::path& out, const SceneDescription& sce
       m_bodies(out / "bodies.csv") {
   if (sim.time() != 0) throw std::invalid_argument("Recorder: a run is resumed into a simulation at t = 0");
   remove_stale_temporaries(out);  // a killed writer's half-written files
-  const int step = checkpoint.state.step;
-  m_stats.reload(step);  // checked by checked_resume()
-  m_bodies.reload(step);
-  if (!scene.joints.empty()) {
+  m_stats.reload(std::move(check.stats));
+  m_bodies.reload(std::move(check.bodies));
+  if (check.joints) {
     m_joints.emplace(out / "joints.csv", joint_columns());
-    m_joints->reload(step);
+    m_joints->reload(std::move(*check.joints));
     m_joint_frames.emplace(out, scene.name);
     m_joint_frames->continue_from(checkpoint.joint_frames);
   }

@@ -15,6 +15,7 @@
 #include <stiffsoft/coupling/solver/simulation.hpp>
 #include <stiffsoft/io/body_state_writer.hpp>
 #include <stiffsoft/io/checkpoint.hpp>
+#include <stiffsoft/io/csv_rows.hpp>
 #include <stiffsoft/io/frame_writer.hpp>
 #include <stiffsoft/io/joint_frame_writer.hpp>
 #include <stiffsoft/io/stats_writer.hpp>
@@ -71,6 +72,21 @@ class Recorder {
   static const std::vector<std::string>& joint_columns();
 
  private:
+  /// What a resume reads and checks before anything in the folder is touched (the writers,
+  /// which rewrite their files when destroyed, do not exist yet): the scene's fingerprint and
+  /// the CSV files' rows up to the checkpoint's step.
+  struct ResumeCheck {
+    std::uint64_t scene_fingerprint;
+    CsvRows stats, bodies;
+    std::optional<CsvRows> joints;
+  };
+  /// Checks the scene against the checkpoint and reads the CSV files' rows up to its step
+  /// (stats.csv and bodies.csv must reach it); a ResumeError names the file or the folder.
+  static ResumeCheck checked_resume(const std::filesystem::path& out, const SceneDescription& scene,
+                                    const Checkpoint& checkpoint);
+  /// The resuming constructor, given what checked_resume() read.
+  Recorder(const std::filesystem::path& out, const SceneDescription& scene, Simulation& sim, const Checkpoint& checkpoint,
+           int checkpoint_every, ResumeCheck check);
   void write_frame(int step, bool last);
   void write_checkpoint() const;
 

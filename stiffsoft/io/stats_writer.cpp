@@ -5,7 +5,6 @@
 #include <stdexcept>
 
 #include <stiffsoft/io/atomic_file.hpp>
-#include <stiffsoft/io/csv_rows.hpp>
 
 namespace stiffsoft {
 
@@ -57,12 +56,10 @@ void StatsWriter::flush() {
   dirty_ = false;
 }
 
-int StatsWriter::reload(int last_step) {
-  CsvRows rows = csv_rows_through_step(file_, columns_, last_step);
+void StatsWriter::reload(CsvRows rows) {
   rows_ = std::move(rows.text);
   row_count_ = rows.count;
   dirty_ = true;
-  return rows.last_step;
 }
 
 std::size_t StatsWriter::row_count() const { return row_count_; }

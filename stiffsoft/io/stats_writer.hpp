@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include <stiffsoft/io/csv_rows.hpp>
+
 namespace stiffsoft {
 
 /// stats.csv: a header line (the column names, comma-separated), then one line per add_row().
@@ -33,10 +35,9 @@ class StatsWriter {
   /// the file on I/O failure; the previous file content then stays intact.
   void flush();
 
-  /// Continues a resumed run: takes the rows of the file on disk up to step `last_step` (the
-  /// first column) as the rows so far. Returns the step of the last one (−1: none). Throws
-  /// ResumeError naming the file when it cannot be read or has another header.
-  int reload(int last_step);
+  /// Continues a resumed run: takes `rows` (csv_rows_through_step of this file, read before
+  /// the writer existed) as the rows so far.
+  void reload(CsvRows rows);
 
   /// Number of rows added so far.
   std::size_t row_count() const;

@@ -196,21 +196,24 @@ struct PetscSolver::Impl {
   /// CG still solves with A. False when the preconditioner is not ICC or α would pass 1.
   bool shift_preconditioner() {
     if (pc_type() != PCICC) return false;
-    for (double alpha = pc_shift == 0 ? 1e-3 : 10 * pc_shift; alpha <= 1; alpha *= 10) {
+    Vec diagonal = nullptr, shift = nullptr;
+    STIFFSOFT_PETSC(VecDuplicate(x, &diagonal));
+    STIFFSOFT_PETSC(VecDuplicate(x, &shift));
+    STIFFSOFT_PETSC(MatGetDiagonal(A, diagonal));
+    bool built = false;
+    for (double alpha = pc_shift == 0 ? 1e-3 : 10 * pc_shift; alpha <= 1 && !built; alpha *= 10) {
       if (P) STIFFSOFT_PETSC(MatCopy(A, P, SAME_NONZERO_PATTERN));
       else STIFFSOFT_PETSC(MatDuplicate(A, MAT_COPY_VALUES, &P));
-      Vec d = nullptr;
-      STIFFSOFT_PETSC(VecDuplicate(x, &d));
-      STIFFSOFT_PETSC(MatGetDiagonal(A, d));
-      STIFFSOFT_PETSC(VecScale(d, alpha));
-      STIFFSOFT_PETSC(MatDiagonalSet(P, d, ADD_VALUES));
-      STIFFSOFT_PETSC(VecDestroy(&d));
+      STIFFSOFT_PETSC(VecAXPBY(shift, alpha, 0.0, diagonal));  // shift = α diag(A)
+      STIFFSOFT_PETSC(MatDiagonalSet(P, shift, ADD_VALUES));
       STIFFSOFT_PETSC(KSPSetOperators(ksp, A, P));
       STIFFSOFT_PETSC(KSPSetUp(ksp));
       pc_shift = alpha;
-      if (preconditioner_failure() == int(PC_NOERROR)) return true;
+      built = preconditioner_failure() == int(PC_NOERROR);
     }
-    return false;
+    STIFFSOFT_PETSC(VecDestroy(&diagonal));
+    STIFFSOFT_PETSC(VecDestroy(&shift));
+    return built;
   }
 
   /// The near-null space of GAMG: the three translations (p of a 12-block, a 3-block itself).
