@@ -287,6 +287,9 @@ void bind_scene(py::module_& m) {
       .def_readwrite("mu", &ContactDescription::mu, "Coulomb friction coefficient, >= 0")
       .def_readwrite("eps_v", &ContactDescription::eps_v, "static/kinetic smoothing speed (m/s); None: 1e-3 x diagonal / s")
       .def_readwrite("kappa", &ContactDescription::kappa, "fixed barrier stiffness (Pa m); None: adaptive")
+      .def_readwrite("balance_kappa", &ContactDescription::balance_kappa, "adaptive kappa: balance it once, at the first contact")
+      .def_readwrite("friction_iterations", &ContactDescription::friction_iterations,
+                     "friction lags per step, >= 1: again at the result while the lag error exceeds the tolerance")
       .def_readwrite("damping", &ContactDescription::damping, "lagged contact damping (s), >= 0")
       .def_readwrite("check_start_gaps", &ContactDescription::check_start_gaps, "refuse bodies starting closer than d^")
       .def_readwrite("pairs", &ContactDescription::pairs, "ContactPairList: per-pair settings (ContactPair items)");

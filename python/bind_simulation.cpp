@@ -220,6 +220,9 @@ void bind_simulation(py::module_& m) {
       .def_readonly("linear_momentum", &StepStats::linear_momentum, "of the dynamic bodies (kg m/s)")
       .def_readonly("orthogonality_error", &StepStats::orthogonality_error, "largest |A A^T - I|_F of a dynamic affine body")
       .def_readonly("inverted_tets", &StepStats::inverted_tets, "soft tetrahedra with det F <= 0")
+      .def_readonly("friction_relags", &StepStats::friction_relags, "times friction was lagged again within the step")
+      .def_readonly("friction_lag_error", &StepStats::friction_lag_error,
+                    "largest change of a body's velocity that friction lagged at the result would make (m/s)")
       .def_readonly("kappa", &StepStats::kappa, "barrier stiffness at the end of the step")
       .def_readonly("joint_error", &StepStats::joint_error, "largest violation of the joints' equalities (m)")
       .def_readonly("joint_force", &StepStats::joint_force, "largest joint force (N)")

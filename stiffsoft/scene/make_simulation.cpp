@@ -44,6 +44,8 @@ SimulationSettings simulation_settings(const SceneDescription& scene, const std:
     };
     s.contact_pair_damping.push_back({index(pair.body_a, "body_a"), index(pair.body_b, "body_b"), pair.damping});
   }
+  s.balance_kappa = scene.contact.balance_kappa;
+  s.friction_iterations = scene.contact.friction_iterations;
   s.tolerance = scene.solver.tolerance.value();
   s.max_iterations = scene.solver.max_iterations;
   s.barrier_hessian = scene.solver.barrier_hessian;

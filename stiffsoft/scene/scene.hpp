@@ -41,6 +41,8 @@ struct ContactDescription {
   double mu = SimulationSettings{}.mu;  ///< Coulomb friction coefficient, ≥ 0; 0 turns friction off
   std::optional<double> eps_v;  ///< static/kinetic smoothing speed ε_v (m/s); default 1e-3 × diagonal / s
   std::optional<double> kappa;  ///< barrier stiffness (Pa·m, fixed); default adaptive (IPC's rule)
+  bool balance_kappa = SimulationSettings{}.balance_kappa;  ///< adaptive κ balanced once, at the first contact
+  int friction_iterations = SimulationSettings{}.friction_iterations;  ///< friction lags per step, ≥ 1
   double damping = SimulationSettings{}.contact_damping;  ///< lagged Rayleigh damping k_d of contacts (s), ≥ 0; 0: none
   bool check_start_gaps = true;  ///< refuse bodies starting closer than d̂, and d̂ above 1 % of a body's size (start_gaps.hpp)
   std::vector<ContactPairDescription> pairs;  ///< per body pair settings, overriding the above for that pair

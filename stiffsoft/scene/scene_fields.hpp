@@ -80,6 +80,8 @@ void fields(const auto& v, Either<ContactDescription> auto& c) {
   v("mu", c.mu);
   v("eps_v", c.eps_v);
   v("kappa", c.kappa);
+  v("balance_kappa", c.balance_kappa);
+  v("friction_iterations", c.friction_iterations);
   v("damping", c.damping);
   v("check_start_gaps", c.check_start_gaps);
   v("pairs", c.pairs);

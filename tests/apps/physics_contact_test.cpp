@@ -5,9 +5,12 @@
 
 #include <tbb/global_control.h>
 
+#include <Eigen/QR>
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <vector>
 
 #include "scene_helpers.hpp"
 
@@ -26,6 +29,8 @@ struct InclineRun {
   double epsv;       // m/s
   double duration;   // s, in contact
   bool converged;
+  double landing_speed = 0;  // m/s: an upper bound of the speed at the first contact
+  std::vector<Eigen::Vector2d> slide;  // (time since the first contact, distance down the slope), once in contact
 };
 
 /// Runs an incline scene; travel counts from `settle` seconds after the block's first contact.
@@ -44,10 +49,15 @@ InclineRun run_incline(const std::string& file, double settle) {
   double t0 = 0;
   InclineRun r{0, scene.contact.eps_v.value(), 0, true};
   const int steps = int(std::lround(scene.time.duration / scene.time.dt));
+  const int dof = sim.model().bodies[1].dof;
+  const Eigen::Vector3d start = sim.q().segment<3>(dof);
   for (int k = 0; k < steps; ++k) {
+    // The speed before the step that first touches, plus what gravity adds in that step.
+    if (!t_contact) r.landing_speed = sim.qdot().segment<3>(dof).norm() + 9.81 * scene.time.dt;
     const StepStats s = sim.step();
     r.converged &= s.newton.converged;
     if (!t_contact && s.contacts > 0) t_contact = s.time;
+    if (t_contact) r.slide.emplace_back(s.time - *t_contact, slope_travel(sim, start, down));
     if (!p0 && t_contact && s.time >= *t_contact + settle - 1e-9) {
       p0 = sim.q().segment<3>(sim.model().bodies[1].dof);
       t0 = s.time;
@@ -69,15 +79,34 @@ TEST(Incline, SticksAtMuHalf) {
   EXPECT_LE(r.travel, r.epsv * r.duration);
 }
 
+// The block lands (a Coulomb impact: friction takes at most μ times the normal impulse off
+// its speed along the slope) and then slides with a = g (sin θ − μ cos θ). Fitting
+// s(t) = s₀ + v₀ t + ½ a t² to its travel from 0.1 s after the first contact checks both.
 TEST(Incline, SlidesAtMuPoint49WithTheAnalyticAcceleration) {
   const InclineRun r = run_incline(STIFFSOFT_SOURCE_DIR "/scenes/incline_slide.json", 0.0);
   EXPECT_TRUE(r.converged);
-  const double theta = std::atan(0.5), g = 9.81;
-  const double a = g * (std::sin(theta) - 0.49 * std::cos(theta));
-  const double expected = 0.5 * a * r.duration * r.duration;  // starts at rest on contact
-  std::printf("μ = 0.49: travel %.4f m, analytic %.4f m (a = %.4f m/s²), error %.2f %%\n", r.travel, expected, a,
-              100 * std::abs(r.travel - expected) / expected);
-  EXPECT_NEAR(r.travel, expected, 0.02 * expected);
+  const double theta = std::atan(0.5), g = 9.81, mu = 0.49;
+  const double a = g * (std::sin(theta) - mu * std::cos(theta));
+  std::vector<Eigen::Vector2d> fitted;
+  for (const Eigen::Vector2d& p : r.slide)
+    if (p.x() >= 0.1) fitted.push_back(p);
+  ASSERT_GT(fitted.size(), 100u);
+  Eigen::MatrixX3d basis(fitted.size(), 3);
+  Eigen::VectorXd travel(fitted.size());
+  for (std::size_t k = 0; k < fitted.size(); ++k) {
+    const double t = fitted[k].x();
+    basis.row(Eigen::Index(k)) << 1.0, t, 0.5 * t * t;
+    travel(Eigen::Index(k)) = fitted[k].y();
+  }
+  const Eigen::Vector3d c = basis.colPivHouseholderQr().solve(travel);
+  // A landing at speed v along the vertical leaves at most (sin θ − μ cos θ) v along the slope.
+  const double v0_bound = (std::sin(theta) - mu * std::cos(theta)) * r.landing_speed;
+  std::printf("μ = 0.49: a = %.5f m/s² (analytic %.5f, error %.2f %%), speed after landing %.2e m/s (Coulomb "
+              "impact: at most %.2e), travel %.4f m\n",
+              c(2), a, 100 * (c(2) / a - 1), c(1), v0_bound, r.travel);
+  EXPECT_NEAR(c(2), a, 0.01 * a);
+  EXPECT_GE(c(1), -1e-4);
+  EXPECT_LE(c(1), v0_bound);
 }
 
 // validation.md: a stack of boxes comes to rest, upright, each box on the one below.
@@ -132,4 +161,42 @@ TEST(Reproducibility, TwoRunsOfAPileAreIdentical) {
   const Eigen::VectorXd a = run(1), b = run(2), c = run(2);
   EXPECT_EQ((a - b).cwiseAbs().maxCoeff(), 0.0);
   EXPECT_EQ((b - c).cwiseAbs().maxCoeff(), 0.0);
+}
+
+// Friction lagged once, at each step's start, misses the contact that starts within the
+// landing step: on the μ = tan θ incline the block then slides on at the speed it landed with.
+// Lagged again at the result while the lag error exceeds the tolerance, the landing leaves it
+// creeping no faster than ε_v, and only the landing's steps are solved again.
+TEST(FrictionIterations, LaggingAgainMakesTheLandingStopTheBlock) {
+  struct Landing {
+    double speed = 0;  // m/s along the slope after 1 s
+    double eps_v = 0;
+    int relags = 0, steps_relagged = 0;
+  };
+  const auto land = [](int friction_iterations) {
+    PreparedScene p = prepare_scene(STIFFSOFT_SOURCE_DIR "/scenes/incline_stick.json");
+    p.settings.friction_iterations = friction_iterations;
+    const double tolerance = p.settings.tolerance;
+    Landing r;
+    r.eps_v = p.settings.eps_v;
+    Simulation sim(std::move(p.model), p.settings);
+    for (int k = 0; k < 100; ++k) {
+      const StepStats s = sim.step();
+      EXPECT_TRUE(s.newton.converged);
+      r.relags += s.friction_relags;
+      r.steps_relagged += s.friction_relags > 0;
+      // Short of the cap, a step ends only once the lag error is within the tolerance.
+      if (s.friction_relags + 1 < friction_iterations) EXPECT_LE(s.friction_lag_error, tolerance) << "step " << s.step;
+    }
+    r.speed = sim.qdot().segment<3>(sim.model().bodies[1].dof).norm();
+    return r;
+  };
+  const Landing once = land(1), lagged = land(3);
+  std::printf("speed after 1 s: lagged once %.2e m/s, up to 3 times %.2e m/s (eps_v %.2e; %d relags in %d steps)\n",
+              once.speed, lagged.speed, lagged.eps_v, lagged.relags, lagged.steps_relagged);
+  EXPECT_EQ(once.relags, 0);
+  EXPECT_GT(once.speed, 10 * once.eps_v);
+  EXPECT_GT(lagged.relags, 0);
+  EXPECT_LE(lagged.steps_relagged, 10);
+  EXPECT_LE(lagged.speed, lagged.eps_v);
 }

@@ -12,6 +12,7 @@ namespace {
 Simulation light_pile() {
   const std::string file = STIFFSOFT_SOURCE_DIR "/scenes/light.json";
   PreparedScene p = prepare_scene(file);
+  p.settings.balance_kappa = true;  // the state then carries a balanced κ and its flag
   return Simulation(std::move(p.model), p.settings);
 }
 

@@ -48,6 +48,7 @@ const BrokenCase kBroken[] = {
     {"mesh_wrong_type.json", "bodies[0].mesh: must be a mesh file path (string) or an object (got 5)"},
     {"root_not_object.json", "(root): must be an object (got an array of 2)"},
     {"zero_max_iterations.json", "solver.max_iterations: must be >= 1 (got 0)"},
+    {"zero_friction_iterations.json", "contact.friction_iterations: must be >= 1 (got 0)"},
     {"krylov_rtol_max_one.json", "solver.krylov_rtol_max: must be < 1 (got 1)"},
     {"empty_body_name.json", "bodies[0].name: must not be empty or only white space"},
     {"blank_body_name.json", "bodies[0].name: must not be empty or only white space"},
@@ -124,6 +125,8 @@ TEST(SceneLoader, AGoodSceneKeepsEveryValueItGives) {
   EXPECT_EQ(s.contact.eps_v, 0.0005);
   EXPECT_EQ(s.contact.kappa, 1000.0);
   EXPECT_EQ(s.contact.damping, 0.001);
+  EXPECT_TRUE(s.contact.balance_kappa);
+  EXPECT_EQ(s.contact.friction_iterations, 3);
   EXPECT_FALSE(s.contact.check_start_gaps);
   ASSERT_EQ(s.contact.pairs.size(), 1u);
   EXPECT_EQ(s.contact.pairs[0].body_a, "ball");

@@ -123,6 +123,8 @@ void expect_default_contact(const ContactDescription& contact) {
   EXPECT_EQ(contact.eps_v, d.eps_v);
   EXPECT_EQ(contact.kappa, d.kappa);
   EXPECT_EQ(contact.damping, d.damping);
+  EXPECT_EQ(contact.balance_kappa, d.balance_kappa);
+  EXPECT_EQ(contact.friction_iterations, d.friction_iterations);
   EXPECT_EQ(contact.check_start_gaps, d.check_start_gaps);
 }
 

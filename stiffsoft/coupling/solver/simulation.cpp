@@ -129,10 +129,26 @@ StepStats Simulation::step() {
   ns.max_iterations = m_settings.max_iterations;
   ns.forcing.eta_max = m_settings.krylov_rtol_max;
   Eigen::VectorXd q_new = initial_guess(q_tilde, c_n);
+  const auto minimize = [&] {
+    return m_prescribed_blocks.empty() ? newton_minimize(m_model, terms, q_new, *m_solver, ns, m_times, reduced_basis())
+                                       : follow_paths(terms, q_tilde, ns, q_new);
+  };
   StepStats stats;
-  stats.newton = m_prescribed_blocks.empty()
-                     ? newton_minimize(m_model, terms, q_new, *m_solver, ns, m_times, reduced_basis())
-                     : follow_paths(terms, q_tilde, ns, q_new);
+  stats.newton = minimize();
+  // Friction lagged at qⁿ misses a contact that starts within the step (a landing slides on
+  // without friction for a step): lag again at the result while that changes some body's
+  // velocity by more than the tolerance, up to contact.friction_iterations lags in all.
+  for (int lags = 1; m_friction; ++lags) {
+    const Configuration c{q_new, m_model.surface(q_new)};
+    m_barrier.update(c);
+    stats.friction_lag_error = friction_lag_error(c);
+    if (lags == m_settings.friction_iterations || !stats.newton.converged ||
+        !(stats.friction_lag_error > m_settings.tolerance))
+      break;
+    m_friction->relag(c, m_barrier);
+    ++stats.friction_relags;
+    accumulate(stats.newton, minimize());
+  }
   if (m_basis) q_new = m_basis->project(q_new);  // removes round-off drift along the equalities
   check_rigidity(q_new);
 
@@ -182,6 +198,21 @@ StepStats Simulation::step() {
   stats.times = m_times;
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
+}
+
+double Simulation::friction_lag_error(const Configuration& c) const {
+  const std::vector<double> lagged = m_friction->normal_force_per_body();
+  const std::vector<double> now = FrictionTerm::normal_force_per_body(m_model, c, m_barrier);
+  // λ is in the incremental potential's units (force × β h²); over the step, a friction force
+  // change μ Δλ / (β h²) changes the body's velocity by that × h / m.
+  const double beta_h = integrator_beta(m_settings.integrator) * m_settings.h;
+  double worst = 0;
+  for (std::size_t b = 0; b < m_model.bodies.size(); ++b) {
+    const BodyModel& body = m_model.bodies[b];
+    if (body.motion != Motion::Dynamic || !(body.mass > 0)) continue;
+    worst = std::max(worst, m_settings.mu * std::abs(now[b] - lagged[b]) / (beta_h * body.mass));
+  }
+  return worst;
 }
 
 SimulationState Simulation::state() const {

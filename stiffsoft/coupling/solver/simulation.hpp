@@ -101,6 +101,11 @@ class Simulation {
   std::vector<double> joint_gaps() const;
 
  private:
+  /// The largest change, over the dynamic bodies, of the velocity the step's friction gives a
+  /// body if its normal forces were lagged at c instead of where they were: μ |Σ_k λ_k(c) −
+  /// Σ_k λ_k(lagged)| / (β h m_b) over the stencils that touch body b (m/s). c must be the
+  /// barrier's current configuration (update() done).
+  double friction_lag_error(const Configuration& c) const;
   /// Newton's starting point: every dynamic body moved rigidly (p from q̃, A turned by
   /// exp([ω]× h)), kinematic bodies onto their target (q̃), as far along the straight line from
   /// qⁿ as CCD allows; bodies in contact at qⁿ start without q̃'s free fall β h² g (they rest

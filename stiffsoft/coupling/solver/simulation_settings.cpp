@@ -36,6 +36,7 @@ void validate(const SimulationSettings& s) {
   if (s.kappa) positive("kappa", *s.kappa);
   positive("tolerance", s.tolerance);
   if (s.max_iterations < 1) fail("max_iterations", "must be ≥ 1", s.max_iterations);
+  if (s.friction_iterations < 1) fail("friction_iterations", "must be ≥ 1", s.friction_iterations);
   try {
     check_linear_solver_name(s.linear_solver);
   } catch (const std::invalid_argument& e) {
@@ -59,6 +60,7 @@ BarrierSettings barrier_settings(const Model& model, const SimulationSettings& s
   BarrierSettings b;
   b.dhat = s.dhat;
   b.kappa = s.kappa;
+  b.balance = s.balance_kappa;
   b.hessian = s.barrier_hessian;
   b.bbox_diagonal = model.bounding_box_diagonal();
   double mass = 0;

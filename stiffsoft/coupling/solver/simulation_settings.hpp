@@ -23,6 +23,8 @@ struct SimulationSettings {
   double mu = 0;                                  ///< friction coefficient; 0: no friction term at all
   double eps_v = 1e-3;                            ///< friction smoothing speed ε_v (m/s)
   std::optional<double> kappa;                    ///< fixed barrier stiffness; unset: adaptive
+  bool balance_kappa = BarrierSettings{}.balance;  ///< adaptive κ: balance it once, at the first contact (BarrierSettings::balance)
+  int friction_iterations = 1;                    ///< friction lags per step: at the start, then again while the lag error exceeds ε_d (Simulation::step)
   double tolerance = NewtonSettings{}.tolerance;  ///< Newton's ε_d (m/s)
   int max_iterations = NewtonSettings{}.max_iterations;  ///< Newton iteration cap per step
   contact::BarrierHessian barrier_hessian = BarrierSettings{}.hessian;  ///< Newton's Hessian of the barrier stencils
@@ -36,7 +38,7 @@ struct SimulationSettings {
 
 /// Checks code-built settings as the scene loader checks a scene file: h, d̂, ε_v, ε_d,
 /// kinematic_weight and rigidity_bound > 0 and finite, μ and contact damping ≥ 0, κ > 0 when set,
-/// max_iterations ≥ 1, krylov_rtol_max in (0, 1), gravity finite, a known linear solver, pair
+/// max_iterations and friction_iterations ≥ 1, krylov_rtol_max in (0, 1), gravity finite, a known linear solver, pair
 /// damping on bodies ≥ 0 with k_d ≥ 0. Throws std::invalid_argument naming the first bad
 /// setting and what was expected (`SimulationSettings.dhat: must be > 0 (got -1)`).
 void validate(const SimulationSettings& settings);

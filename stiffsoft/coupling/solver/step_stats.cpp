@@ -24,6 +24,8 @@ const std::vector<StepStatsColumn>& step_stats_columns() {
       {"orthogonality_error", [](const StepStats& s) { return s.orthogonality_error; }},
       {"elastic_energy", [](const StepStats& s) { return s.elastic_energy; }},
       {"inverted_tets", [](const StepStats& s) { return double(s.inverted_tets); }},
+      {"friction_relags", [](const StepStats& s) { return double(s.friction_relags); }},
+      {"friction_lag_error", [](const StepStats& s) { return s.friction_lag_error; }},
       {"kappa", [](const StepStats& s) { return s.kappa; }},
       {"joint_error", [](const StepStats& s) { return s.joint_error; }},
       {"joint_force", [](const StepStats& s) { return s.joint_force; }},

@@ -140,7 +140,7 @@ void BarrierTerm::initialize_stiffness(const Configuration& c, const Eigen::Vect
   m_prev_min_distance = -1;
   // Balance once, when contact first appears; re-balancing every step would change the force
   // at a given distance from one step to the next (and with it the lagged friction).
-  if (m_settings.kappa || m_constraints.empty() || m_balanced) return;
+  if (m_settings.kappa || !m_settings.balance || m_constraints.empty() || m_balanced) return;
   m_balanced = true;
   const double saved = m_kappa;
   m_kappa = 1.0;

@@ -17,6 +17,10 @@ namespace stiffsoft {
 struct BarrierSettings {
   double dhat = 1e-3;               ///< activation distance d̂ (m)
   std::optional<double> kappa;      ///< fixed barrier stiffness; unset: adaptive (IPC's rule)
+  /// Adaptive κ only: balance it once, at the first contact, against the other terms' gradient
+  /// (IPC's initial-stiffness formula, clamped to [κ_min, 100 κ_min]); false keeps κ_min and
+  /// only doubles it when contacts come closer than 1e-9 × diagonal.
+  bool balance = false;
   double bbox_diagonal = 1.0;       ///< scene size (m), for the adaptive rule's thresholds
   double average_mass = 1.0;        ///< average dynamic body mass (kg), for κ_min
   /// Newton's Hessian of each stencil (scene key solver.barrier_hessian).
@@ -47,7 +51,7 @@ class BarrierTerm final : public EnergyTerm {
 
   /// IPC's initial κ by gradient balancing, clamped to [κ_min, 100 κ_min]: κ = −∇E·∇B / ‖∇B‖²,
   /// where ∇E is the gradient of the other terms at the step's start. Acts once, at the first
-  /// step that starts with active contacts; no-op with a fixed κ.
+  /// step that starts with active contacts; no-op with a fixed κ or without BarrierSettings::balance.
   void initialize_stiffness(const Configuration& c, const Eigen::VectorXd& grad_other);
   /// Current κ (J/m⁴ in squared-distance units, i.e. κ b has units of energy).
   double kappa() const { return m_kappa; }

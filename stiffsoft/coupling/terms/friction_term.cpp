@@ -1,5 +1,7 @@
 #include <stiffsoft/coupling/terms/friction_term.hpp>
 
+#include <algorithm>
+
 #include <stiffsoft/coupling/model/stencil_jacobian.hpp>
 #include <stiffsoft/coupling/terms/chunked_assembly.hpp>
 
@@ -10,6 +12,10 @@ FrictionTerm::FrictionTerm(const Model& model, double mu, double epsv_h)
 
 void FrictionTerm::lag(const Configuration& c, const BarrierTerm& barrier) {
   m_x_lag = c.x;
+  relag(c, barrier);
+}
+
+void FrictionTerm::relag(const Configuration& c, const BarrierTerm& barrier) {
   m_stencils.clear();
   m_vertices.clear();
   for (const ContactConstraint& k : barrier.constraints()) {
@@ -17,6 +23,37 @@ void FrictionTerm::lag(const Configuration& c, const BarrierTerm& barrier) {
                                                         barrier.dhat(), barrier.kappa() * k.weight));
     m_vertices.push_back(k.vertices);
   }
+}
+
+namespace {
+/// Adds λ to each body the stencil's vertices belong to, once per body.
+void add_per_body(const Model& model, const std::array<int, 4>& vertices, double lambda, std::vector<double>& sums) {
+  int counted[4] = {-1, -1, -1, -1};
+  for (int i = 0; i < 4; ++i) {
+    if (vertices[i] < 0) continue;
+    const int b = model.mesh.vertex_body[vertices[i]];
+    if (std::find(counted, counted + i, b) != counted + i) continue;
+    counted[i] = b;
+    sums[b] += lambda;
+  }
+}
+}  // namespace
+
+std::vector<double> FrictionTerm::normal_force_per_body() const {
+  std::vector<double> sums(m_model.bodies.size(), 0.0);
+  for (size_t k = 0; k < m_stencils.size(); ++k) add_per_body(m_model, m_vertices[k], m_stencils[k].normal_force, sums);
+  return sums;
+}
+
+std::vector<double> FrictionTerm::normal_force_per_body(const Model& model, const Configuration& c,
+                                                        const BarrierTerm& barrier) {
+  std::vector<double> sums(model.bodies.size(), 0.0);
+  for (const ContactConstraint& k : barrier.constraints())
+    add_per_body(model, k.vertices,
+                 contact::make_friction_stencil(k.stencil, gather(c.x, k.vertices), barrier.dhat(), barrier.kappa() * k.weight)
+                     .normal_force,
+                 sums);
+  return sums;
 }
 
 contact::Vector12d FrictionTerm::displacement(const Configuration& c, size_t k) const {

@@ -20,6 +20,9 @@ class FrictionTerm final : public EnergyTerm {
   /// Lags normal forces and bases from the barrier's active set at the start-of-step
   /// configuration c (whose surface x becomes xⁿ).
   void lag(const Configuration& c, const BarrierTerm& barrier);
+  /// Lags normal forces and bases again, from the barrier's active set at c, keeping xⁿ: the
+  /// tangential displacements still count from the step's start.
+  void relag(const Configuration& c, const BarrierTerm& barrier);
   /// See EnergyTerm::value.
   double value(const Configuration& c) const override;
   /// See EnergyTerm::add_gradient.
@@ -32,6 +35,12 @@ class FrictionTerm final : public EnergyTerm {
                       BlockHessian& H) const override;
   /// Friction force −∇_x D on every surface vertex, |V|×3 (energy units, as the barrier's).
   Eigen::MatrixX3d vertex_forces(const Configuration& c) const;
+  /// Σ_k λ_k over the lagged stencils that touch each body (indexed like Model::bodies; a
+  /// stencil between two bodies counts for both), in the energy's units.
+  std::vector<double> normal_force_per_body() const;
+  /// The same sums for the barrier's active set at c: what lag(c, barrier) would give.
+  static std::vector<double> normal_force_per_body(const Model& model, const Configuration& c,
+                                                   const BarrierTerm& barrier);
   /// Number of lagged friction stencils.
   size_t size() const { return m_stencils.size(); }
 
