@@ -51,7 +51,7 @@ struct ContactDescription {
 /// `solver`: Newton's stopping rule and the linear solver.
 struct SolverDescription {
   std::optional<double> tolerance;  ///< ε_d (m/s): stop when max surface-point step / h < ε_d; default 1e-2 × diagonal / s
-  int max_iterations = NewtonSettings{}.max_iterations;  ///< Newton iteration cap per step, ≥ 1
+  int max_iterations = NewtonSettings{}.max_iterations;  ///< Newton iteration cap per solve, ≥ 1
   contact::BarrierHessian barrier_hessian = SimulationSettings{}.barrier_hessian;  ///< Newton's Hessian of the barrier stencils
   std::string linear = SimulationSettings{}.linear_solver;  ///< linear solver backend (see make_linear_solver())
   double krylov_rtol_max = ForcingTermSettings{}.eta_max;  ///< η_max: largest relative residual a Krylov solve may stop at

@@ -200,3 +200,34 @@ TEST(FrictionIterations, LaggingAgainMakesTheLandingStopTheBlock) {
   EXPECT_LE(lagged.steps_relagged, 10);
   EXPECT_LE(lagged.speed, lagged.eps_v);
 }
+
+// The lag error is a velocity: in the step where a box lands, friction was lagged where it had
+// no contact, so the error is μ times the landing's normal impulse per mass, the change of the
+// box's vertical velocity beyond gravity's (backward Euler). Newton's tolerance is tight here:
+// with the default (1e-2 × diagonal / s, 0.14 mm per step against d̂ = 1 mm) Newton stops in the
+// next steps with the box pressed to 1.5 µm from the floor, far from force balance, and the lag
+// error shows it (up to 1.3e3 m/s; docs/newton.md).
+TEST(FrictionIterations, TheLagErrorOfALandingIsMuTimesItsImpulsePerMass) {
+  const double mu = 0.5, h = 0.01, g = 9.81;
+  Simulation sim = stiffsoft::testing::simulate(R"({"description": "landing", "time": {"dt": 0.01},
+    "contact": {"dhat": 0.001, "mu": 0.5}, "solver": {"tolerance": 0.001},
+    "bodies": [
+      {"name": "floor", "kind": "fixed", "mesh": {"primitive": "box", "size": [1.0, 0.1, 1.0]}, "position": [0, -0.05, 0]},
+      {"name": "box", "mesh": {"primitive": "box", "size": [0.1, 0.1, 0.1]}, "position": [0, 0.055, 0],
+       "velocity": [0, -1, 0]}]})");
+  const int dof = sim.model().bodies[1].dof;
+  for (int k = 0; k < 10; ++k) {
+    const double v_before = sim.qdot()(dof + 1);
+    const StepStats s = sim.step();
+    ASSERT_TRUE(s.newton.converged);
+    EXPECT_EQ(s.friction_relags, 0);  // the default lags once
+    if (s.contacts == 0) continue;
+    const double impulse_per_mass = sim.qdot()(dof + 1) - (v_before - g * h);
+    std::printf("landing step %d: lag error %.4f m/s, mu x normal impulse / m = %.4f m/s\n", s.step,
+                s.friction_lag_error, mu * impulse_per_mass);
+    EXPECT_GT(impulse_per_mass, 0.5);
+    EXPECT_NEAR(s.friction_lag_error, mu * impulse_per_mass, 0.02 * mu * impulse_per_mass);
+    return;
+  }
+  FAIL() << "the box never landed";
+}

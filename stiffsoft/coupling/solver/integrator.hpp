@@ -30,6 +30,10 @@ inline Eigen::VectorXd predicted_q(Integrator integrator, double h,
          4.0 / 9.0 * h * h * a;
 }
 
+/// c in δq̇⁺ = c δq⁺ / h: how the velocity after the step follows a change of its result
+/// (BE 1, BDF-2 3/2; see updated_qdot).
+inline double velocity_coefficient(Integrator integrator) { return integrator == Integrator::BDF2 ? 1.5 : 1.0; }
+
 /// q̇⁺ after the step: BE (q⁺ − qⁿ)/h; BDF-2 (3q⁺ − 4qⁿ + qⁿ⁻¹)/(2h).
 inline Eigen::VectorXd updated_qdot(Integrator integrator, double h,
                                     const Eigen::VectorXd& q_new, const Eigen::VectorXd& q,

@@ -203,14 +203,14 @@ StepStats Simulation::step() {
 double Simulation::friction_lag_error(const Configuration& c) const {
   const std::vector<double> lagged = m_friction->normal_force_per_body();
   const std::vector<double> now = FrictionTerm::normal_force_per_body(m_model, c, m_barrier);
-  // λ is in the incremental potential's units (force × β h²); over the step, a friction force
-  // change μ Δλ / (β h²) changes the body's velocity by that × h / m.
-  const double beta_h = integrator_beta(m_settings.integrator) * m_settings.h;
+  // λ is in the incremental potential's units (force × β h²): a change μ Δλ of the friction
+  // moves the step's result by δq = μ Δλ / m, and its velocity by c δq / h.
+  const double h_over_c = m_settings.h / velocity_coefficient(m_settings.integrator);
   double worst = 0;
   for (std::size_t b = 0; b < m_model.bodies.size(); ++b) {
     const BodyModel& body = m_model.bodies[b];
     if (body.motion != Motion::Dynamic || !(body.mass > 0)) continue;
-    worst = std::max(worst, m_settings.mu * std::abs(now[b] - lagged[b]) / (beta_h * body.mass));
+    worst = std::max(worst, m_settings.mu * std::abs(now[b] - lagged[b]) / (h_over_c * body.mass));
   }
   return worst;
 }

@@ -101,10 +101,13 @@ class Simulation {
   std::vector<double> joint_gaps() const;
 
  private:
-  /// The largest change, over the dynamic bodies, of the velocity the step's friction gives a
-  /// body if its normal forces were lagged at c instead of where they were: μ |Σ_k λ_k(c) −
-  /// Σ_k λ_k(lagged)| / (β h m_b) over the stencils that touch body b (m/s). c must be the
-  /// barrier's current configuration (update() done).
+  /// An estimate of friction's lag error at c (m/s): over the dynamic bodies, the largest change
+  /// of a body's mean velocity that its friction would make if its normal forces were lagged at
+  /// c instead, from the change of their sum over the stencils that touch it: c_v μ |Σ_k λ_k(c)
+  /// − Σ_k λ_k(lagged)| / (h m_b), c_v from velocity_coefficient (λ in the incremental
+  /// potential's units). Force moving between a body's contacts, turned tangent bases and
+  /// torques are not seen; a soft body counts as its whole mass. c must be the barrier's
+  /// current configuration (update() done).
   double friction_lag_error(const Configuration& c) const;
   /// Newton's starting point: every dynamic body moved rigidly (p from q̃, A turned by
   /// exp([ω]× h)), kinematic bodies onto their target (q̃), as far along the straight line from

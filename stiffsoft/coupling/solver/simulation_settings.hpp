@@ -26,7 +26,7 @@ struct SimulationSettings {
   bool balance_kappa = BarrierSettings{}.balance;  ///< adaptive κ: balance it once, at the first contact (BarrierSettings::balance)
   int friction_iterations = 1;                    ///< friction lags per step: at the start, then again while the lag error exceeds ε_d (Simulation::step)
   double tolerance = NewtonSettings{}.tolerance;  ///< Newton's ε_d (m/s)
-  int max_iterations = NewtonSettings{}.max_iterations;  ///< Newton iteration cap per step
+  int max_iterations = NewtonSettings{}.max_iterations;  ///< Newton iteration cap per solve (a step solves again per friction re-lag)
   contact::BarrierHessian barrier_hessian = BarrierSettings{}.hessian;  ///< Newton's Hessian of the barrier stencils
   std::string linear_solver = "auto";             ///< linear solver backend (see make_linear_solver())
   double krylov_rtol_max = ForcingTermSettings{}.eta_max;  ///< largest relative residual a Krylov solve may stop at (η_max)
@@ -45,7 +45,7 @@ void validate(const SimulationSettings& settings);
 
 /// The barrier's settings in a simulation of `model`: d̂ and κ from the settings, the model's
 /// bounding-box diagonal, and the average mass of what carries DOFs (dynamic affine bodies and
-/// dynamic soft nodes, each one node of its mass, as IPC averages over nodes) for κ's balance.
+/// dynamic soft nodes, each one node of its mass, as IPC averages over nodes) for κ_min (and its balance).
 BarrierSettings barrier_settings(const Model& model, const SimulationSettings& settings);
 
 }  // namespace stiffsoft

@@ -26,8 +26,9 @@ struct StepStats {
   int inverted_tets = 0;         ///< soft tetrahedra with det F ≤ 0 at the end of the step
   std::vector<int> inverted_per_body;  ///< the same per body, indexed like Model::bodies; empty without soft bodies
   int friction_relags = 0;       ///< times friction was lagged again within the step (contact.friction_iterations − 1 at most)
-  /// Largest change of a dynamic body's velocity over the step that friction lagged at the
-  /// result would make against the lag it was solved with (m/s; Simulation::step); 0 without friction.
+  /// Friction's lag error at the result: an estimate of the largest change of a dynamic body's
+  /// mean velocity that friction lagged there would make against the lag the step was solved
+  /// with (m/s; Simulation::friction_lag_error); 0 without friction.
   double friction_lag_error = 0;
   double kappa = 0;              ///< barrier stiffness at the end of the step
   double joint_error = 0;        ///< largest violation of the joints' linear equalities at the end of the step (m)
