@@ -47,6 +47,7 @@ SimulationSettings simulation_settings(const SceneDescription& scene, const std:
   s.balance_kappa = scene.contact.balance_kappa;
   s.friction_iterations = scene.contact.friction_iterations;
   s.tolerance = scene.solver.tolerance.value();
+  s.gap_tolerance = scene.solver.gap_tolerance;
   s.max_iterations = scene.solver.max_iterations;
   s.barrier_hessian = scene.solver.barrier_hessian;
   s.linear_solver = scene.solver.linear;

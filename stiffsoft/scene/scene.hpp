@@ -51,6 +51,7 @@ struct ContactDescription {
 /// `solver`: Newton's stopping rule and the linear solver.
 struct SolverDescription {
   std::optional<double> tolerance;  ///< ε_d (m/s): stop when max surface-point step / h < ε_d; default 1e-2 × diagonal / s
+  double gap_tolerance = NewtonSettings{}.gap_tolerance;  ///< Newton's largest relative change of a contact gap at convergence, > 0
   int max_iterations = NewtonSettings{}.max_iterations;  ///< Newton iteration cap per solve, ≥ 1
   contact::BarrierHessian barrier_hessian = SimulationSettings{}.barrier_hessian;  ///< Newton's Hessian of the barrier stencils
   std::string linear = SimulationSettings{}.linear_solver;  ///< linear solver backend (see make_linear_solver())

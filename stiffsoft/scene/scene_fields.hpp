@@ -89,6 +89,7 @@ void fields(const auto& v, Either<ContactDescription> auto& c) {
 
 void fields(const auto& v, Either<SolverDescription> auto& s) {
   v("tolerance", s.tolerance);
+  v("gap_tolerance", s.gap_tolerance);
   v("max_iterations", s.max_iterations);
   v("barrier_hessian", s.barrier_hessian);
   v("linear", s.linear);

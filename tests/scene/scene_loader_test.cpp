@@ -133,6 +133,7 @@ TEST(SceneLoader, AGoodSceneKeepsEveryValueItGives) {
   EXPECT_EQ(s.contact.pairs[0].body_b, "floor");
   EXPECT_EQ(s.contact.pairs[0].damping, 0.002);
   EXPECT_EQ(s.solver.tolerance, 0.003);
+  EXPECT_EQ(s.solver.gap_tolerance, 0.3);
   EXPECT_EQ(s.solver.max_iterations, 17);
   EXPECT_EQ(s.solver.barrier_hessian, contact::BarrierHessian::GaussNewton);
   EXPECT_EQ(s.solver.linear, "cholmod");

@@ -131,6 +131,7 @@ void expect_default_contact(const ContactDescription& contact) {
 void expect_default_solver(const SolverDescription& solver) {
   const SolverDescription d{};
   EXPECT_EQ(solver.tolerance, d.tolerance);
+  EXPECT_EQ(solver.gap_tolerance, d.gap_tolerance);
   EXPECT_EQ(solver.max_iterations, d.max_iterations);
   EXPECT_EQ(solver.linear, d.linear);
   EXPECT_EQ(solver.krylov_rtol_max, d.krylov_rtol_max);

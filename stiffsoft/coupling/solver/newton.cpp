@@ -152,7 +152,12 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
     report.last_step_speed = (dx.rows() ? dx.rowwise().norm().maxCoeff() : 0.0) / settings.h;
     // A step below the tolerance is still taken (when it lowers E): skipping it would freeze
     // a body whose per-step velocity change is below ε_d, e.g. a block starting to slide.
-    const bool small_step = report.last_step_speed < settings.tolerance;
+    // Nor while the step would change a contact's gap by more than a fraction of it: a contact
+    // pressed deep into the barrier moves out only by a small multiple of its gap per
+    // iteration, a move the speed rule alone takes for convergence.
+    bool small_step = report.last_step_speed < settings.tolerance;
+    for (const EnergyTerm* t : terms)
+      small_step = small_step && t->relative_gap_change(c, dx) <= settings.gap_tolerance;
     double alpha = 1.0;
     for (const EnergyTerm* t : terms) alpha = std::min(alpha, t->max_step(c, p, dx));
     report.smallest_ccd_step = std::min(report.smallest_ccd_step, alpha);

@@ -17,6 +17,8 @@ namespace stiffsoft {
 /// Newton's stopping rule and limits.
 struct NewtonSettings {
   double tolerance = 1e-2;   ///< ε_d (m/s): stop when max_k ‖(Φp)_k‖ / h < ε_d
+  /// ... and when p changes no active contact's distance d by more than this fraction of d.
+  double gap_tolerance = 0.2;
   double h = 1e-2;           ///< time step (s), to turn the step into a speed
   int max_iterations = 200;  ///< cap on iterations
   int max_line_search = 60;  ///< cap on halvings of α

@@ -125,6 +125,7 @@ StepStats Simulation::step() {
 
   NewtonSettings ns;
   ns.tolerance = m_settings.tolerance;
+  ns.gap_tolerance = m_settings.gap_tolerance;
   ns.h = h;
   ns.max_iterations = m_settings.max_iterations;
   ns.forcing.eta_max = m_settings.krylov_rtol_max;

@@ -35,6 +35,7 @@ void validate(const SimulationSettings& s) {
   positive("eps_v", s.eps_v);
   if (s.kappa) positive("kappa", *s.kappa);
   positive("tolerance", s.tolerance);
+  positive("gap_tolerance", s.gap_tolerance);
   if (s.max_iterations < 1) fail("max_iterations", "must be ≥ 1", s.max_iterations);
   if (s.friction_iterations < 1) fail("friction_iterations", "must be ≥ 1", s.friction_iterations);
   try {

@@ -26,6 +26,7 @@ struct SimulationSettings {
   bool balance_kappa = BarrierSettings{}.balance;  ///< adaptive κ: balance it once, at the first contact (BarrierSettings::balance)
   int friction_iterations = 1;                    ///< friction lags per step: at the start, then again while the lag error exceeds ε_d (Simulation::step)
   double tolerance = NewtonSettings{}.tolerance;  ///< Newton's ε_d (m/s)
+  double gap_tolerance = NewtonSettings{}.gap_tolerance;  ///< Newton also needs every active contact's gap to change by less than this fraction
   int max_iterations = NewtonSettings{}.max_iterations;  ///< Newton iteration cap per solve (a step solves again per friction re-lag)
   contact::BarrierHessian barrier_hessian = BarrierSettings{}.hessian;  ///< Newton's Hessian of the barrier stencils
   std::string linear_solver = "auto";             ///< linear solver backend (see make_linear_solver())
@@ -36,7 +37,7 @@ struct SimulationSettings {
   std::vector<ContactPairDamping> contact_pair_damping;  ///< k_d per body pair, replacing contact_damping there
 };
 
-/// Checks code-built settings as the scene loader checks a scene file: h, d̂, ε_v, ε_d,
+/// Checks code-built settings as the scene loader checks a scene file: h, d̂, ε_v, ε_d, gap_tolerance,
 /// kinematic_weight and rigidity_bound > 0 and finite, μ and contact damping ≥ 0, κ > 0 when set,
 /// max_iterations and friction_iterations ≥ 1, krylov_rtol_max in (0, 1), gravity finite, a known linear solver, pair
 /// damping on bodies ≥ 0 with k_d ≥ 0. Throws std::invalid_argument naming the first bad

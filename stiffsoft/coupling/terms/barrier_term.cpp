@@ -120,6 +120,18 @@ double BarrierTerm::max_step(const Configuration& c, const Eigen::VectorXd&, con
   return alpha_ee;
 }
 
+double BarrierTerm::relative_gap_change(const Configuration& c, const Eigen::MatrixX3d& dx) const {
+  double worst = 0;
+  for (const ContactConstraint& k : m_constraints) {
+    const contact::Vector12d x0 = gather(c.x, k.vertices);
+    const contact::Vector12d x1 = x0 + gather(dx, k.vertices);
+    const double d0 = std::sqrt(contact::stencil_squared_distance(k.stencil, x0));
+    const double d1 = std::sqrt(contact::stencil_squared_distance(k.stencil, x1));
+    worst = std::max(worst, std::abs(d1 - d0) / d0);
+  }
+  return worst;
+}
+
 double BarrierTerm::min_active_distance(const Configuration& c) const {
   double d2 = std::numeric_limits<double>::infinity();
   for (const ContactConstraint& k : m_constraints)

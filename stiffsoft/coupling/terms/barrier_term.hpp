@@ -55,6 +55,8 @@ class BarrierTerm final : public EnergyTerm {
   void initialize_stiffness(const Configuration& c, const Eigen::VectorXd& grad_other);
   /// Current κ (J/m⁴ in squared-distance units, i.e. κ b has units of energy).
   double kappa() const { return m_kappa; }
+  /// See EnergyTerm::relative_gap_change.
+  double relative_gap_change(const Configuration& c, const Eigen::MatrixX3d& dx) const override;
   /// Whether initialize_stiffness has balanced κ already (it does so once per run).
   bool kappa_balanced() const { return m_balanced; }
   /// Continues a run from a saved κ and balance flag (Simulation::restore).

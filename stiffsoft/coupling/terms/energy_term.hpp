@@ -45,6 +45,8 @@ class EnergyTerm {
   }
   /// After each accepted Newton iteration (e.g. adapt the barrier stiffness).
   virtual void end_iteration(const Configuration&) {}
+  /// Largest relative change of a gap the term keeps open along dx (0: none).
+  virtual double relative_gap_change(const Configuration&, const Eigen::MatrixX3d& /*dx*/) const { return 0.0; }
 };
 
 }  // namespace stiffsoft
