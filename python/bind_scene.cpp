@@ -298,7 +298,7 @@ void bind_scene(py::module_& m) {
   keyword_init<SolverDescription>(solver, "SolverSettings");
   solver.def_readwrite("tolerance", &SolverDescription::tolerance, "Newton tolerance (m/s); None: 1e-2 x diagonal / s")
       .def_readwrite("gap_tolerance", &SolverDescription::gap_tolerance,
-                     "Newton also needs every active contact's gap to change by less than this fraction")
+                     "Newton also needs every active contact's gap to change by at most this fraction")
       .def_readwrite("max_iterations", &SolverDescription::max_iterations, "Newton iteration cap per solve")
       .def_readwrite("linear", &SolverDescription::linear, "the linear solver ('auto', 'cholmod', 'petsc', 'petsc:KSP[:PC]')")
       .def_readwrite("krylov_rtol_max", &SolverDescription::krylov_rtol_max, "largest relative residual of a Krylov solve")

@@ -98,6 +98,7 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
     solver.set_block_sizes(sizes);
   }
 
+  std::string gap_note;  // why a slow last direction did not stop Newton, for the failure message
   for (; report.iterations < settings.max_iterations; ++report.iterations) {
     const Configuration c{q, x};
     g.setZero();
@@ -150,14 +151,20 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
       }
     }
     report.last_step_speed = (dx.rows() ? dx.rowwise().norm().maxCoeff() : 0.0) / settings.h;
-    // A step below the tolerance is still taken (when it lowers E): skipping it would freeze
-    // a body whose per-step velocity change is below ε_d, e.g. a block starting to slide.
-    // Nor while the step would change a contact's gap by more than a fraction of it: a contact
-    // pressed deep into the barrier moves out only by a small multiple of its gap per
-    // iteration, a move the speed rule alone takes for convergence.
-    bool small_step = report.last_step_speed < settings.tolerance;
-    for (const EnergyTerm* t : terms)
-      small_step = small_step && t->relative_gap_change(c, dx) <= settings.gap_tolerance;
+    // Converged when the direction moves no surface point faster than ε_d and changes no active
+    // contact's gap by more than gap_tolerance of it: a contact pressed deep into the barrier
+    // moves out by only about its own gap per iteration, a move the speed rule alone takes for
+    // convergence. The last (small) step is still taken when it lowers E: skipping it would
+    // freeze a body whose per-step velocity change is below ε_d, e.g. a block starting to slide.
+    const bool slow = report.last_step_speed < settings.tolerance;
+    double gap_change = 0;
+    if (slow)
+      for (const EnergyTerm* t : terms) gap_change = std::max(gap_change, t->relative_gap_change(c, dx));
+    const bool small_step = slow && gap_change <= settings.gap_tolerance;
+    gap_note = slow && !small_step ? " (the last direction was below the speed tolerance but changed a contact's gap by " +
+                                         std::to_string(int(std::lround(100 * gap_change))) +
+                                         " %, above solver.gap_tolerance)"
+                                   : std::string();
     double alpha = 1.0;
     for (const EnergyTerm* t : terms) alpha = std::min(alpha, t->max_step(c, p, dx));
     report.smallest_ccd_step = std::min(report.smallest_ccd_step, alpha);
@@ -189,13 +196,13 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
       break;
     }
     if (!accepted) {
-      report.failure = alpha > 0 ? "the line search found no decrease of the energy"
-                                 : "CCD allowed no step along the Newton direction";
+      report.failure = (alpha > 0 ? "the line search found no decrease of the energy"
+                                  : "CCD allowed no step along the Newton direction") + gap_note;
       break;
     }
   }
   if (!report.converged && report.failure.empty())
-    report.failure = "the iteration cap (" + std::to_string(settings.max_iterations) + ") was reached";
+    report.failure = "the iteration cap (" + std::to_string(settings.max_iterations) + ") was reached" + gap_note;
   report.energy = E;
   return report;
 }

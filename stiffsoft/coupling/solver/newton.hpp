@@ -51,7 +51,7 @@ void accumulate(NewtonReport& total, const NewtonReport& next);
 /// Minimises Σ terms over q, starting from (and overwriting) q. Terms get update() at every
 /// configuration they are evaluated at. With an iterative linear solver the Krylov tolerance
 /// of each solve follows Eisenstat–Walker's forcing terms (linear_solver/forcing_term.hpp);
-/// the stopping rule stays the step-size rule above.
+/// the stopping rule stays the one above (step size and contact gaps).
 ///
 /// With a reduced basis q = N z + q_p (joints' linear equalities, joints/reduced_basis.hpp),
 /// q must satisfy the equalities on entry; each direction solves (Nᵀ H N) dz = −Nᵀ g and steps

@@ -26,7 +26,7 @@ struct SimulationSettings {
   bool balance_kappa = BarrierSettings{}.balance;  ///< adaptive κ: balance it once, at the first contact (BarrierSettings::balance)
   int friction_iterations = 1;                    ///< friction lags per step: at the start, then again while the lag error exceeds ε_d (Simulation::step)
   double tolerance = NewtonSettings{}.tolerance;  ///< Newton's ε_d (m/s)
-  double gap_tolerance = NewtonSettings{}.gap_tolerance;  ///< Newton also needs every active contact's gap to change by less than this fraction
+  double gap_tolerance = NewtonSettings{}.gap_tolerance;  ///< Newton also needs every active contact's gap to change by at most this fraction
   int max_iterations = NewtonSettings{}.max_iterations;  ///< Newton iteration cap per solve (a step solves again per friction re-lag)
   contact::BarrierHessian barrier_hessian = BarrierSettings{}.hessian;  ///< Newton's Hessian of the barrier stencils
   std::string linear_solver = "auto";             ///< linear solver backend (see make_linear_solver())
