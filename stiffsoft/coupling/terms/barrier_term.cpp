@@ -121,21 +121,33 @@ double BarrierTerm::max_step(const Configuration& c, const Eigen::VectorXd&, con
 }
 
 double BarrierTerm::relative_gap_change(const Configuration& c, const Eigen::MatrixX3d& dx) const {
-  double worst = 0;
-  for (const ContactConstraint& k : m_constraints) {
-    const contact::Vector12d x0 = gather(c.x, k.vertices);
-    const contact::Vector12d x1 = x0 + gather(dx, k.vertices);
-    const double d0 = std::sqrt(contact::stencil_squared_distance(k.stencil, x0));
-    const double d1 = std::sqrt(contact::stencil_squared_distance(k.stencil, x1));
-    worst = std::max(worst, std::abs(d1 - d0) / d0);
-  }
-  return worst;
+  // max is exact in any order: the same result whatever the thread count.
+  return tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, m_constraints.size(), 256), 0.0,
+      [&](const tbb::blocked_range<size_t>& r, double worst) {
+        for (size_t i = r.begin(); i < r.end(); ++i) {
+          const ContactConstraint& k = m_constraints[i];
+          const contact::Vector12d x0 = gather(c.x, k.vertices);
+          const contact::Vector12d x1 = x0 + gather(dx, k.vertices);
+          const double d0 = std::sqrt(contact::stencil_squared_distance(k.stencil, x0));
+          const double d1 = std::sqrt(contact::stencil_squared_distance(k.stencil, x1));
+          worst = std::max(worst, std::abs(d1 - d0) / d0);
+        }
+        return worst;
+      },
+      [](double a, double b) { return std::max(a, b); });
 }
 
 double BarrierTerm::min_active_distance(const Configuration& c) const {
-  double d2 = std::numeric_limits<double>::infinity();
-  for (const ContactConstraint& k : m_constraints)
-    d2 = std::min(d2, contact::stencil_squared_distance(k.stencil, gather(c.x, k.vertices)));
+  const double d2 = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, m_constraints.size(), 256), std::numeric_limits<double>::infinity(),
+      [&](const tbb::blocked_range<size_t>& r, double smallest) {
+        for (size_t i = r.begin(); i < r.end(); ++i)
+          smallest = std::min(smallest, contact::stencil_squared_distance(m_constraints[i].stencil,
+                                                                          gather(c.x, m_constraints[i].vertices)));
+        return smallest;
+      },
+      [](double a, double b) { return std::min(a, b); });
   return std::sqrt(d2);
 }
 
