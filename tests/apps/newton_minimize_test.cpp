@@ -94,7 +94,10 @@ class CoshTerm final : public EnergyTerm {
     H.add(m_block, m_block, Hq);
   }
   /// Records E at the accepted iterate.
-  void end_iteration(const Configuration& c) override { energies.push_back(value(c)); }
+  bool end_iteration(const Configuration& c) override {
+    energies.push_back(value(c));
+    return false;
+  }
   /// E after each accepted iteration, in order.
   std::vector<double> energies;
 

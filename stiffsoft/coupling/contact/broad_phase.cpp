@@ -11,15 +11,14 @@ namespace stiffsoft {
 
 namespace {
 
-struct Box {
-  Eigen::Array3d lo, hi;
-  bool overlaps(const Box& o) const { return (lo <= o.hi).all() && (o.lo <= hi).all(); }
-  Box intersection(const Box& o) const { return {lo.max(o.lo), hi.min(o.hi)}; }
-  void extend(const Box& o) {
-    lo = lo.min(o.lo);
-    hi = hi.max(o.hi);
-  }
-};
+using Box = AxisBox;
+
+Box intersection(const Box& a, const Box& b) { return {a.lo.max(b.lo), a.hi.min(b.hi)}; }
+
+void extend(Box& a, const Box& b) {
+  a.lo = a.lo.min(b.lo);
+  a.hi = a.hi.max(b.hi);
+}
 
 struct Keyed {
   double lo, hi;  // extent along the sweep axis
@@ -31,6 +30,17 @@ struct PrimitiveBoxes {
   std::vector<Box> vertex, face, edge;
 };
 
+/// out[k] spans the boxes of the vertices of primitive k (a row of F or E), for k in [begin, end).
+template <class Primitives>
+void span(const Primitives& primitives, const std::vector<Box>& vertex, Eigen::Index begin, Eigen::Index end,
+          std::vector<Box>& out) {
+  for (Eigen::Index k = begin; k < end; ++k) {
+    Box box = vertex[primitives(k, 0)];
+    for (Eigen::Index i = 1; i < primitives.cols(); ++i) extend(box, vertex[primitives(k, i)]);
+    out[k] = box;
+  }
+}
+
 PrimitiveBoxes primitive_boxes(const CollisionMesh& mesh, const Eigen::MatrixX3d& x0,
                                const Eigen::MatrixX3d& x1, double inflation) {
   PrimitiveBoxes boxes;
@@ -39,16 +49,10 @@ PrimitiveBoxes primitive_boxes(const CollisionMesh& mesh, const Eigen::MatrixX3d
     const Eigen::Array3d a = x0.row(v).transpose().array(), b = x1.row(v).transpose().array();
     boxes.vertex[v] = {a.min(b) - inflation, a.max(b) + inflation};
   });
-  // The box of primitive k (a row of F or E) spans its vertices' boxes.
-  const auto spanned = [&](const auto& primitives, Eigen::Index k, std::vector<Box>& out) {
-    Box box = boxes.vertex[primitives(k, 0)];
-    for (Eigen::Index i = 1; i < primitives.cols(); ++i) box.extend(boxes.vertex[primitives(k, i)]);
-    out[k] = box;
-  };
   boxes.face.resize(mesh.F.rows());
-  tbb::parallel_for(Eigen::Index(0), mesh.F.rows(), [&](Eigen::Index f) { spanned(mesh.F, f, boxes.face); });
+  tbb::parallel_for(Eigen::Index(0), mesh.F.rows(), [&](Eigen::Index f) { span(mesh.F, boxes.vertex, f, f + 1, boxes.face); });
   boxes.edge.resize(mesh.E.rows());
-  tbb::parallel_for(Eigen::Index(0), mesh.E.rows(), [&](Eigen::Index e) { spanned(mesh.E, e, boxes.edge); });
+  tbb::parallel_for(Eigen::Index(0), mesh.E.rows(), [&](Eigen::Index e) { span(mesh.E, boxes.vertex, e, e + 1, boxes.edge); });
   return boxes;
 }
 
@@ -155,71 +159,156 @@ bool moves(const BodyModel& body) {
   return body.dof >= 0 || body.representation == Representation::Soft;
 }
 
-}  // namespace
-
-Candidates broad_phase(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
-                       double inflation) {
-  const CollisionMesh& mesh = model.mesh;
-  const PrimitiveBoxes boxes = primitive_boxes(mesh, x0, x1, inflation);
-
-  // Body boxes, then body pairs by sort-and-sweep along x.
+/// Each body's box: the union of its vertices' boxes.
+std::vector<Box> body_boxes(const Model& model, const std::vector<Box>& vertex) {
   const int nb = int(model.bodies.size());
   std::vector<Box> body_box(nb);
   for (int b = 0; b < nb; ++b) {
     const BodyModel& body = model.bodies[b];
     Box box{Eigen::Array3d::Constant(1e300), Eigen::Array3d::Constant(-1e300)};
-    for (int v = body.vertex_begin; v < body.vertex_end; ++v) box.extend(boxes.vertex[v]);
+    for (int v = body.vertex_begin; v < body.vertex_end; ++v) extend(box, vertex[v]);
     body_box[b] = box;
   }
+  return body_box;
+}
+
+/// Body pairs (a < b) whose boxes overlap and one of which moves, by sort-and-sweep along x,
+/// then (b, b) for every body with self-contact.
+std::vector<std::array<int, 2>> body_pairs(const Model& model, const std::vector<Box>& body_box) {
+  const int nb = int(model.bodies.size());
   std::vector<int> order(nb);
   for (int b = 0; b < nb; ++b) order[b] = b;
   std::sort(order.begin(), order.end(),
             [&](int a, int b) { return body_box[a].lo[0] < body_box[b].lo[0]; });
-  std::vector<std::array<int, 2>> body_pairs;
+  std::vector<std::array<int, 2>> pairs;
   for (int i = 0; i < nb; ++i) {
     const int a = order[i];
     for (int j = i + 1; j < nb && body_box[order[j]].lo[0] <= body_box[a].hi[0]; ++j) {
       const int b = order[j];
       if (!moves(model.bodies[a]) && !moves(model.bodies[b])) continue;
-      if (body_box[a].overlaps(body_box[b])) body_pairs.push_back({std::min(a, b), std::max(a, b)});
+      if (body_box[a].overlaps(body_box[b])) pairs.push_back({std::min(a, b), std::max(a, b)});
     }
   }
   for (int b = 0; b < nb; ++b)
-    if (model.bodies[b].self_contact()) body_pairs.push_back({b, b});
+    if (model.bodies[b].self_contact()) pairs.push_back({b, b});
+  return pairs;
+}
 
+/// Appends to `out` the primitive pairs of bodies a and b (a = b: a soft body against itself)
+/// whose boxes overlap.
+void primitive_pairs(const Model& model, const PrimitiveBoxes& boxes, const std::vector<Box>& body_box, int a, int b,
+                     Candidates& out) {
+  const CollisionMesh& mesh = model.mesh;
+  const BodyModel& A = model.bodies[a];
+  const BodyModel& B = model.bodies[b];
+  const Box region = intersection(body_box[a], body_box[b]);
+  int axis;
+  (region.hi - region.lo).maxCoeff(&axis);
+  const auto va = inside(boxes.vertex, A.vertex_begin, A.vertex_end, region, axis);
+  const auto fa = inside(boxes.face, A.face_begin, A.face_end, region, axis);
+  const auto ea = inside(boxes.edge, A.edge_begin, A.edge_end, region, axis);
+  if (a == b) {
+    // Self-contact of a soft body: every pair once, none that shares a vertex.
+    grid_pairs(va, boxes.vertex, fa, boxes.face, region, [&](int v, int f) {
+      if ((mesh.F.row(f).array() != v).all()) out.vertex_face.push_back({v, f});
+    });
+    grid_pairs(ea, boxes.edge, ea, boxes.edge, region, [&](int e, int g) {
+      if (mesh.E(e, 0) != mesh.E(g, 0) && mesh.E(e, 0) != mesh.E(g, 1) &&
+          mesh.E(e, 1) != mesh.E(g, 0) && mesh.E(e, 1) != mesh.E(g, 1))
+        out.edge_edge.push_back({e, g});
+    });
+    return;
+  }
+  const auto vb = sorted(inside(boxes.vertex, B.vertex_begin, B.vertex_end, region, axis));
+  const auto fb = sorted(inside(boxes.face, B.face_begin, B.face_end, region, axis));
+  const auto eb = sorted(inside(boxes.edge, B.edge_begin, B.edge_end, region, axis));
+  sweep(sorted(va), boxes.vertex, fb, boxes.face, [&](int v, int f) { out.vertex_face.push_back({v, f}); });
+  sweep(vb, boxes.vertex, sorted(fa), boxes.face, [&](int v, int f) { out.vertex_face.push_back({v, f}); });
+  sweep(sorted(ea), boxes.edge, eb, boxes.edge,
+        [&](int e, int g) { out.edge_edge.push_back({std::min(e, g), std::max(e, g)}); });
+}
+
+}  // namespace
+
+Candidates broad_phase(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
+                       double inflation) {
+  const PrimitiveBoxes boxes = primitive_boxes(model.mesh, x0, x1, inflation);
+  const std::vector<Box> body_box = body_boxes(model, boxes.vertex);
+  const std::vector<std::array<int, 2>> pairs = body_pairs(model, body_box);
   // Primitive pairs of a few body pairs per task, gathered in body-pair order.
-  const auto fill = [&](std::size_t k, Candidates& out) {
-    const auto [a, b] = body_pairs[k];
-    const BodyModel& A = model.bodies[a];
-    const BodyModel& B = model.bodies[b];
-    const Box region = body_box[a].intersection(body_box[b]);
-    int axis;
-    (region.hi - region.lo).maxCoeff(&axis);
-    const auto va = inside(boxes.vertex, A.vertex_begin, A.vertex_end, region, axis);
-    const auto fa = inside(boxes.face, A.face_begin, A.face_end, region, axis);
-    const auto ea = inside(boxes.edge, A.edge_begin, A.edge_end, region, axis);
-    if (a == b) {
-      // Self-contact of a soft body: every pair once, none that shares a vertex.
-      grid_pairs(va, boxes.vertex, fa, boxes.face, region, [&](int v, int f) {
-        if ((mesh.F.row(f).array() != v).all()) out.vertex_face.push_back({v, f});
-      });
-      grid_pairs(ea, boxes.edge, ea, boxes.edge, region, [&](int e, int g) {
-        if (mesh.E(e, 0) != mesh.E(g, 0) && mesh.E(e, 0) != mesh.E(g, 1) &&
-            mesh.E(e, 1) != mesh.E(g, 0) && mesh.E(e, 1) != mesh.E(g, 1))
-          out.edge_edge.push_back({e, g});
-      });
-      return;
-    }
-    const auto vb = sorted(inside(boxes.vertex, B.vertex_begin, B.vertex_end, region, axis));
-    const auto fb = sorted(inside(boxes.face, B.face_begin, B.face_end, region, axis));
-    const auto eb = sorted(inside(boxes.edge, B.edge_begin, B.edge_end, region, axis));
-    sweep(sorted(va), boxes.vertex, fb, boxes.face, [&](int v, int f) { out.vertex_face.push_back({v, f}); });
-    sweep(vb, boxes.vertex, sorted(fa), boxes.face, [&](int v, int f) { out.vertex_face.push_back({v, f}); });
-    sweep(sorted(ea), boxes.edge, eb, boxes.edge,
-          [&](int e, int g) { out.edge_edge.push_back({std::min(e, g), std::max(e, g)}); });
-  };
   Candidates all;
-  in_ordered_chunks<Candidates>(body_pairs.size(), 8, fill, [&](const Candidates& part) { all.append(part); });
+  in_ordered_chunks<Candidates>(
+      pairs.size(), 8, [&](std::size_t k, Candidates& out) { primitive_pairs(model, boxes, body_box, pairs[k][0], pairs[k][1], out); },
+      [&](const Candidates& part) { all.append(part); });
+  return all;
+}
+
+Candidates BroadPhase::find(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
+                            double inflation) {
+  const CollisionMesh& mesh = model.mesh;
+  const PrimitiveBoxes now = primitive_boxes(mesh, x0, x1, inflation);
+  const int nb = int(model.bodies.size());
+  if (m_vertex.size() != now.vertex.size() || m_version.size() != std::size_t(nb)) {  // a new model: forget
+    m_vertex.assign(now.vertex.size(), Box{Eigen::Array3d::Constant(1), Eigen::Array3d::Constant(-1)});
+    m_face.resize(now.face.size());
+    m_edge.resize(now.edge.size());
+    m_body.assign(nb, Box{Eigen::Array3d::Constant(1e300), Eigen::Array3d::Constant(-1e300)});
+    m_version.assign(nb, 0);
+    m_pairs.clear();
+  }
+  // A body whose vertices left their reference boxes gets new ones: its current boxes grown by the margin.
+  tbb::parallel_for(0, nb, [&](int b) {
+    const BodyModel& body = model.bodies[b];
+    bool kept = true;
+    for (int v = body.vertex_begin; v < body.vertex_end && kept; ++v) kept = m_vertex[v].contains(now.vertex[v]);
+    if (kept) return;
+    for (int v = body.vertex_begin; v < body.vertex_end; ++v)
+      m_vertex[v] = {now.vertex[v].lo - m_margin, now.vertex[v].hi + m_margin};
+    span(mesh.F, m_vertex, body.face_begin, body.face_end, m_face);
+    span(mesh.E, m_vertex, body.edge_begin, body.edge_end, m_edge);
+    Box box{Eigen::Array3d::Constant(1e300), Eigen::Array3d::Constant(-1e300)};
+    for (int v = body.vertex_begin; v < body.vertex_end; ++v) extend(box, m_vertex[v]);
+    m_body[b] = box;
+    ++m_version[b];
+  });
+  PrimitiveBoxes reference{std::move(m_vertex), std::move(m_face), std::move(m_edge)};
+  const std::vector<std::array<int, 2>> pairs = body_pairs(model, body_boxes(model, now.vertex));
+  // Each body pair's primitive pairs from memory when both bodies kept their reference boxes,
+  // else found again at them; then those whose current boxes overlap, in body-pair order.
+  std::vector<PairCandidates> next(pairs.size());
+  const auto remembered = [&](int a, int b) -> PairCandidates* {
+    const auto it = std::lower_bound(m_pairs.begin(), m_pairs.end(), std::make_pair(a, b),
+                                     [](const PairCandidates& p, const std::pair<int, int>& k) { return std::make_pair(p.a, p.b) < k; });
+    if (it == m_pairs.end() || it->a != a || it->b != b) return nullptr;
+    return it->version_a == m_version[a] && it->version_b == m_version[b] ? &*it : nullptr;
+  };
+  std::vector<char> refreshed(pairs.size(), 0);
+  Candidates all;
+  in_ordered_chunks<Candidates>(
+      pairs.size(), 8,
+      [&](std::size_t k, Candidates& out) {
+        const auto [a, b] = pairs[k];
+        PairCandidates& p = next[k];
+        if (PairCandidates* old = remembered(a, b)) {
+          p = std::move(*old);  // each remembered pair is taken by one body pair at most
+        } else {
+          p = {a, b, m_version[a], m_version[b], {}};
+          primitive_pairs(model, reference, m_body, a, b, p.pairs);
+          refreshed[k] = 1;
+        }
+        for (const auto& vf : p.pairs.vertex_face)
+          if (now.vertex[vf[0]].overlaps(now.face[vf[1]])) out.vertex_face.push_back(vf);
+        for (const auto& ee : p.pairs.edge_edge)
+          if (now.edge[ee[0]].overlaps(now.edge[ee[1]])) out.edge_edge.push_back(ee);
+      },
+      [&](const Candidates& part) { all.append(part); });
+  m_vertex = std::move(reference.vertex);
+  m_face = std::move(reference.face);
+  m_edge = std::move(reference.edge);
+  std::sort(next.begin(), next.end(),
+            [](const PairCandidates& p, const PairCandidates& q) { return std::make_pair(p.a, p.b) < std::make_pair(q.a, q.b); });
+  m_pairs = std::move(next);
+  m_refreshed = std::size_t(std::count(refreshed.begin(), refreshed.end(), 1));
   return all;
 }
 

@@ -30,4 +30,48 @@ struct Candidates {
 Candidates broad_phase(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
                        double inflation);
 
+/// An axis-aligned box (m).
+struct AxisBox {
+  Eigen::Array3d lo, hi;
+  /// Whether the boxes share a point (closed boxes).
+  bool overlaps(const AxisBox& o) const { return (lo <= o.hi).all() && (o.lo <= hi).all(); }
+  /// Whether `o` lies inside this box.
+  bool contains(const AxisBox& o) const { return (lo <= o.lo).all() && (o.hi <= hi).all(); }
+};
+
+/// The broad phase of a run: the same candidates as broad_phase() at every call, found from
+/// memory where the bodies barely moved (a Verlet list per body pair). Each body keeps
+/// reference boxes, its vertices' boxes grown by `margin` when it last moved out of them; a
+/// body pair's primitive pairs are found by sort-and-sweep of those reference boxes and kept
+/// while neither body leaves them, and every call keeps those of its pairs whose current boxes
+/// overlap. Exact: the current boxes lie inside the reference ones, so no overlapping pair is
+/// missed. Pairs of kept body pairs come in the order they were found, so the order (not the
+/// set) depends on the calls before; the contact set (sorted) and the CCD bound (a minimum)
+/// do not.
+class BroadPhase {
+ public:
+  /// `margin` (m): how far a body may move beyond the boxes of the call that last found its
+  /// pairs before they are found again.
+  explicit BroadPhase(double margin) : m_margin(margin) {}
+  /// The candidates broad_phase(model, x0, x1, inflation) finds, as a set.
+  Candidates find(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, double inflation);
+  /// Body pairs of the last find() whose primitive pairs were found again (the others came from memory).
+  std::size_t refreshed_pairs() const { return m_refreshed; }
+  /// Body pairs of the last find().
+  std::size_t body_pair_count() const { return m_pairs.size(); }
+
+ private:
+  /// One body pair's primitive pairs, found at the reference boxes of the given versions.
+  struct PairCandidates {
+    int a, b;
+    unsigned version_a, version_b;
+    Candidates pairs;
+  };
+  double m_margin;
+  std::vector<AxisBox> m_vertex, m_face, m_edge, m_body;  ///< reference boxes
+  std::vector<unsigned> m_version;                         ///< per body: its reference boxes' version
+  std::vector<PairCandidates> m_pairs;                     ///< sorted by (a, b)
+  std::size_t m_refreshed = 0;
+};
+
 }  // namespace stiffsoft

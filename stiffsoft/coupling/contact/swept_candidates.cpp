@@ -5,11 +5,11 @@
 namespace stiffsoft {
 
 SweptCandidates::SweptCandidates(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
-                                 double proximity, double slack)
+                                 double proximity, double slack, BroadPhase& finder)
     : m_lo(x0.array().min(x1.array())),
       m_hi(x0.array().max(x1.array())),
       m_slack(slack),
-      m_all(broad_phase(model, x0, x1, proximity + slack)) {}
+      m_all(finder.find(model, x0, x1, proximity + slack)) {}
 
 bool SweptCandidates::covers(const Eigen::MatrixX3d& x) const {
   if (x.rows() != m_lo.rows()) return false;

@@ -19,8 +19,9 @@ class SweptCandidates {
   /// Broad phase of the segment x0 → x1 (|V|×3, m), every box grown by proximity + slack (m):
   /// pairs closer than 2·proximity at any configuration whose vertices lie within `slack`
   /// of their own swept boxes are candidates.
+  /// `finder` is the run's broad phase.
   SweptCandidates(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, double proximity,
-                  double slack);
+                  double slack, BroadPhase& finder);
   /// True when every vertex of x (|V|×3, m) lies within the slack of its swept box, so the
   /// candidates hold every pair of x closer than 2·proximity.
   bool covers(const Eigen::MatrixX3d& x) const;

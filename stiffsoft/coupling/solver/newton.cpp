@@ -171,12 +171,14 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
     report.ccd_limited_iterations += alpha < 1;
     bool accepted = false;
     Eigen::MatrixX3d x_trial;
+    double E_trial = E;
     for (int ls = 0; alpha > 0 && ls < settings.max_line_search; ++ls) {
       ++report.line_search_steps;
       q_trial = q + alpha * p;
       x_trial = model.surface(q_trial);
       update_all(terms, {q_trial, x_trial});
-      if (total_energy(terms, {q_trial, x_trial}) <= E) {
+      E_trial = total_energy(terms, {q_trial, x_trial});
+      if (E_trial <= E) {
         accepted = true;
         break;
       }
@@ -185,8 +187,9 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
     if (accepted) {
       q.swap(q_trial);
       x.swap(x_trial);
-      for (EnergyTerm* t : terms) t->end_iteration({q, x});
-      E = total_energy(terms, {q, x});
+      bool changed = false;
+      for (EnergyTerm* t : terms) changed = t->end_iteration({q, x}) || changed;
+      E = changed ? total_energy(terms, {q, x}) : E_trial;
     } else {
       update_all(terms, {q, x});
     }

@@ -46,8 +46,8 @@ class BarrierTerm final : public EnergyTerm {
   /// d̂/2) is kept for update() on the same segment.
   double max_step(const Configuration& c, const Eigen::VectorXd& dq, const Eigen::MatrixX3d& dx) const override;
   /// IPC's adaptive rule: double κ (up to κ_max) while the smallest distance keeps shrinking
-  /// below 1e-9 × diagonal.
-  void end_iteration(const Configuration& c) override;
+  /// below 1e-9 × diagonal; true when κ changed.
+  bool end_iteration(const Configuration& c) override;
 
   /// IPC's initial κ by gradient balancing, clamped to [κ_min, 100 κ_min]: κ = −∇E·∇B / ‖∇B‖²,
   /// where ∇E is the gradient of the other terms at the step's start. Acts once, at the first
@@ -82,6 +82,8 @@ class BarrierTerm final : public EnergyTerm {
   double m_prev_min_distance = -1;
   bool m_balanced = false;
   std::vector<ContactConstraint> m_constraints;
+  /// The run's broad phase, which remembers body pairs' primitive pairs between calls.
+  mutable BroadPhase m_broad_phase;
   /// Candidates of the last direction max_step bounded, reused by update() on that segment.
   mutable std::optional<SweptCandidates> m_swept;
 };

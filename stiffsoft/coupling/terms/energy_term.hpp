@@ -43,8 +43,10 @@ class EnergyTerm {
                               BlockHessian& /*H*/) const {
     return false;
   }
-  /// After each accepted Newton iteration (e.g. adapt the barrier stiffness).
-  virtual void end_iteration(const Configuration&) {}
+  /// After each accepted Newton iteration (e.g. adapt the barrier stiffness). Returns true
+  /// when it changed the term's value at c, so that Newton evaluates E there again (otherwise
+  /// it keeps the accepted trial's E).
+  virtual bool end_iteration(const Configuration&) { return false; }
   /// Largest relative change of a gap the term keeps open along dx (0: none).
   virtual double relative_gap_change(const Configuration&, const Eigen::MatrixX3d& /*dx*/) const { return 0.0; }
 };
