@@ -477,7 +477,7 @@ TEST(GaussNewtonBarrier, HessianIsTheSumOfTheStencilFormsAndPsd) {
   int gauss_newton_stencils = 0;
   for (const ContactConstraint& k : f.step.barrier.constraints()) {
     const contact::Vector12d xs = gather(x, k.vertices);
-    const bool gauss_newton = !contact::is_mollified(k.stencil);
+    const bool gauss_newton = !contact::mollifier_active(k.stencil, xs);
     const contact::Matrix12d H = gauss_newton ? contact::barrier_gauss_newton_hessian(k.stencil, xs, f.settings.dhat)
                                               : contact::barrier_potential_hessian(k.stencil, xs, f.settings.dhat, true);
     gauss_newton_stencils += gauss_newton;

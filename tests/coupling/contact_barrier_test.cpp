@@ -298,6 +298,31 @@ TEST(BarrierPotential, ProjectedHessianIsPsdAndEqualsTheFullProjection) {
   }
 }
 
+TEST(BarrierPotential, EdgePairsFarFromParallelTakeTheUnmollifiedProjection) {
+  // An edge–edge stencil carries its mollifier threshold, but where the edges are further from
+  // parallel than it the mollifier is 1 and its terms vanish: the Hessian is the unmollified
+  // one, and its projection the ≤ 5-dimensional one (not the 9×9 of mollified pairs).
+  const double dhat = 0.1;
+  std::mt19937 rng(77);
+  int compared = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const Vector12d x = stencil_at_distance(PrimitivePair::EdgeEdge, dhat * (0.05 + 0.9 * (trial % 10) / 9.0), rng);
+    const Stencil mollified{PrimitivePair::EdgeEdge, 1e-6}, plain{PrimitivePair::EdgeEdge};
+    if (edge_edge_cross_squared_norm(x) < 1e-6) continue;
+    EXPECT_FALSE(mollifier_active(mollified, x));
+    const Matrix12d H = barrier_potential_hessian(mollified, x, dhat, false);
+    EXPECT_TRUE(H == barrier_potential_hessian(plain, x, dhat, false));
+    const Matrix12d Hp = barrier_potential_hessian(mollified, x, dhat, true);
+    EXPECT_TRUE(Hp == projected_barrier_hessian(plain, x, dhat));
+    EXPECT_LT((Hp - projected_whole(H)).norm(), 1e-10 * H.norm());
+    ++compared;
+  }
+  EXPECT_GT(compared, 150);
+  const Vector12d parallel = nearly_parallel_crossing_edges(0.05, 0.01, rng);
+  EXPECT_TRUE(mollifier_active({PrimitivePair::EdgeEdge, 1e-3}, parallel));
+  EXPECT_FALSE(mollifier_active({PrimitivePair::EdgeEdge}, parallel));
+}
+
 TEST(ProjectedBarrierHessian, EqualsTheProjectionInTheTranslationComplementOnHardPairs) {
   // The ≤ 5-dimensional projection against the 9×9 one on the exact Hessian, where the
   // closest-point solve is ill-conditioned: tiny distances, nearly parallel and exactly

@@ -43,6 +43,10 @@ double barrier_potential(const Stencil& s, const Vector12d& x, double dhat) {
   return is_mollified(s) ? edge_edge_mollifier(x, s.eps_x) * b : b;
 }
 
+bool mollifier_active(const Stencil& s, const Vector12d& x) {
+  return is_mollified(s) && edge_edge_cross_squared_norm(x) < s.eps_x;
+}
+
 Vector12d barrier_potential_gradient(const Stencil& s, const Vector12d& x, double dhat) {
   const double d2 = stencil_squared_distance(s, x);
   if (d2 >= dhat * dhat) return Vector12d::Zero();
@@ -55,7 +59,9 @@ Vector12d barrier_potential_gradient(const Stencil& s, const Vector12d& x, doubl
 
 Matrix12d barrier_potential_hessian(const Stencil& s, const Vector12d& x, double dhat,
                                     bool project_psd) {
-  if (project_psd && !is_mollified(s)) return projected_barrier_hessian(s, x, dhat);
+  // Where the mollifier is 1 its terms vanish and the Hessian is the unmollified one, which
+  // projects in ≤ 5 dimensions instead of 9.
+  if (project_psd && !mollifier_active(s, x)) return projected_barrier_hessian(s, x, dhat);
   const double d2 = stencil_squared_distance(s, x);
   if (d2 >= dhat * dhat) return Matrix12d::Zero();
   const Vector12d grad_d2 = stencil_squared_distance_gradient(s, x);
@@ -80,7 +86,7 @@ Matrix12d barrier_gauss_newton_hessian(const Stencil& s, const Vector12d& x, dou
 }
 
 Matrix12d barrier_newton_hessian(const Stencil& s, const Vector12d& x, double dhat, BarrierHessian method) {
-  if (method == BarrierHessian::GaussNewton && !is_mollified(s)) return barrier_gauss_newton_hessian(s, x, dhat);
+  if (method == BarrierHessian::GaussNewton && !mollifier_active(s, x)) return barrier_gauss_newton_hessian(s, x, dhat);
   return barrier_potential_hessian(s, x, dhat, true);
 }
 }  // namespace stiffsoft::contact

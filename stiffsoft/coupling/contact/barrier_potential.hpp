@@ -37,6 +37,10 @@ struct Stencil {
 /// Whether the stencil carries the edge–edge mollifier.
 inline bool is_mollified(const Stencil& s) { return s.kind == PrimitivePair::EdgeEdge && s.eps_x > 0.0; }
 
+/// Whether the stencil's mollifier is below 1 at x (its edges within the mollifier's angle of
+/// parallel): only then do its value, gradient and Hessian carry the mollifier's terms.
+bool mollifier_active(const Stencil& s, const Vector12d& x);
+
 /// Whether d² is the classified segment–segment distance.
 inline bool uses_segment_distance(const Stencil& s) {
   return s.kind == PrimitivePair::EdgeEdge && s.segment_distance;
@@ -89,7 +93,7 @@ enum class BarrierHessian {
 /// with it, not the minimiser: the energy and gradient are those of barrier_potential.
 Matrix12d barrier_gauss_newton_hessian(const Stencil& s, const Vector12d& x, double dhat);
 
-/// Newton's PSD Hessian of one stencil's barrier by `method` (mollified stencils: Projected,
+/// Newton's PSD Hessian of one stencil's barrier by `method` (stencils whose mollifier is active: Projected,
 /// whose mollifier terms the Gauss–Newton form does not cover).
 Matrix12d barrier_newton_hessian(const Stencil& s, const Vector12d& x, double dhat, BarrierHessian method);
 
