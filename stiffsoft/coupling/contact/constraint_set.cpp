@@ -18,6 +18,13 @@ contact::Vector12d gather(const Eigen::MatrixX3d& x, const std::array<int, 4>& v
   return out;
 }
 
+contact::Vector12d gather(const PointRows& x, const std::array<int, 4>& vertices) {
+  contact::Vector12d out = contact::Vector12d::Zero();
+  for (int i = 0; i < 4; ++i)
+    if (vertices[i] >= 0) out.segment<3>(3 * i) = x.row(vertices[i]).transpose();
+  return out;
+}
+
 namespace {
 
 /// Canonical vertex order so that the same physical pair found from different candidates
@@ -65,9 +72,10 @@ bool less(const ContactConstraint& a, const ContactConstraint& b) {
 
 }  // namespace
 
-std::vector<ContactConstraint> build_constraints(const Model& model, const Eigen::MatrixX3d& x,
+std::vector<ContactConstraint> build_constraints(const Model& model, const Eigen::MatrixX3d& x_by_column,
                                                  const Candidates& candidates, double dhat) {
   const CollisionMesh& mesh = model.mesh;
+  const PointRows x = x_by_column;  // each candidate reads its points from four places, not twelve
   const double dhat2 = dhat * dhat;
   tbb::enumerable_thread_specific<std::vector<ContactConstraint>> local;
 

@@ -28,6 +28,13 @@ struct ContactConstraint {
 /// The stencil's vertex positions packed [x_0; x_1; x_2; x_3] (unused entries zero), m.
 contact::Vector12d gather(const Eigen::MatrixX3d& x, const std::array<int, 4>& vertices);
 
+/// Surface points stored point by point (|V|×3, row-major): a stencil's four points are four
+/// contiguous triples instead of twelve scattered entries, for loops over many stencils.
+using PointRows = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
+/// gather() from point-by-point storage: the same values.
+contact::Vector12d gather(const PointRows& x, const std::array<int, 4>& vertices);
+
 /// Contacts among the candidates whose distance at x is below d̂ (m). Nearly parallel edge
 /// pairs (‖ea × eb‖² < ε_x) stay edge–edge with the mollifier and the true segment distance.
 std::vector<ContactConstraint> build_constraints(const Model& model, const Eigen::MatrixX3d& x,

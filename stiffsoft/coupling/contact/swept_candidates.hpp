@@ -32,7 +32,8 @@ class SweptCandidates {
   Candidates for_ccd(const Model& model) const;
 
  private:
-  Eigen::ArrayX3d m_lo, m_hi;  ///< per-vertex swept box (no growth)
+  /// Per-vertex swept box (no growth), vertex by vertex (a candidate reads its vertices' rows).
+  Eigen::Array<double, Eigen::Dynamic, 3, Eigen::RowMajor> m_lo, m_hi;
   double m_slack;              ///< allowed distance of a covered configuration from the swept boxes (m)
   Candidates m_all;
 };

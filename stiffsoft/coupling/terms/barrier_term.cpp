@@ -92,7 +92,8 @@ double BarrierTerm::max_step(const Configuration& c, const Eigen::VectorXd&, con
   m_swept.emplace(m_model, c.x, x1, 0.5 * m_settings.dhat, 0.01 * m_settings.dhat, m_broad_phase);
   const Candidates candidates = m_swept->for_ccd(m_model);
   const CollisionMesh& mesh = m_model.mesh;
-  const auto row = [](const Eigen::MatrixX3d& m, int i) -> Eigen::Vector3d { return m.row(i).transpose(); };
+  const PointRows x0 = c.x, x1_rows = x1;  // each query reads its points from 8 places, not 24
+  const auto row = [](const PointRows& m, int i) -> Eigen::Vector3d { return m.row(i).transpose(); };
   // Every query is bounded by the same t_max (1 for the point–triangle pairs, then their
   // minimum for the edge–edge pairs), never by a time another query found: the time ACCD
   // returns depends on its bound, so the step bound is then the same whatever the thread
@@ -111,14 +112,15 @@ double BarrierTerm::max_step(const Configuration& c, const Eigen::VectorXd&, con
   };
   const double alpha_vf = smallest_time(candidates.vertex_face.size(), 1.0, [&](std::size_t k, const ccd::CcdSettings& s) {
     const auto [v, f] = candidates.vertex_face[k];
-    return ccd::point_triangle_toi(row(c.x, v), row(c.x, mesh.F(f, 0)), row(c.x, mesh.F(f, 1)), row(c.x, mesh.F(f, 2)),
-                                   row(x1, v), row(x1, mesh.F(f, 0)), row(x1, mesh.F(f, 1)), row(x1, mesh.F(f, 2)), s);
+    return ccd::point_triangle_toi(row(x0, v), row(x0, mesh.F(f, 0)), row(x0, mesh.F(f, 1)), row(x0, mesh.F(f, 2)),
+                                   row(x1_rows, v), row(x1_rows, mesh.F(f, 0)), row(x1_rows, mesh.F(f, 1)),
+                                   row(x1_rows, mesh.F(f, 2)), s);
   });
   const double alpha_ee = smallest_time(candidates.edge_edge.size(), alpha_vf, [&](std::size_t k, const ccd::CcdSettings& s) {
     const auto [ea, eb] = candidates.edge_edge[k];
-    return ccd::edge_edge_toi(row(c.x, mesh.E(ea, 0)), row(c.x, mesh.E(ea, 1)), row(c.x, mesh.E(eb, 0)),
-                              row(c.x, mesh.E(eb, 1)), row(x1, mesh.E(ea, 0)), row(x1, mesh.E(ea, 1)),
-                              row(x1, mesh.E(eb, 0)), row(x1, mesh.E(eb, 1)), s);
+    return ccd::edge_edge_toi(row(x0, mesh.E(ea, 0)), row(x0, mesh.E(ea, 1)), row(x0, mesh.E(eb, 0)),
+                              row(x0, mesh.E(eb, 1)), row(x1_rows, mesh.E(ea, 0)), row(x1_rows, mesh.E(ea, 1)),
+                              row(x1_rows, mesh.E(eb, 0)), row(x1_rows, mesh.E(eb, 1)), s);
   });
   return alpha_ee;
 }
