@@ -145,6 +145,38 @@ TEST(SegmentDistanceLowerBound, NeverExceedsTheDistanceAndIsUsuallyWithinHalfOfI
   EXPECT_GT(tight, trials / 2);
 }
 
+TEST(PointTriangleDistanceLowerBound, NeverExceedsTheDistanceAndIsExactOverTheTriangle) {
+  // Random, sliver, degenerate (collinear, a point) triangles and points in their plane: the
+  // plane's distance is at most the exact squared distance (to rounding), and equal to it for
+  // points above the triangle's interior.
+  std::mt19937 rng(15);
+  int trials = 0, above_interior = 0;
+  const auto check = [&](const Vector3d& p, const Vector3d& t0, const Vector3d& t1, const Vector3d& t2,
+                         bool sliver = false) {
+    const double exact = point_triangle_squared_distance(p, t0, t1, t2);
+    const double bound = point_triangle_squared_distance_lower_bound(p, t0, t1, t2);
+    ASSERT_TRUE(std::isfinite(bound));
+    EXPECT_GE(bound, 0.0);
+    EXPECT_LE(bound, exact + 1e-13 * std::max(1.0, exact)) << "trial " << trials;
+    if (!sliver && classify_point_triangle(p, t0, t1, t2).kind == PrimitivePair::FaceVertex) {
+      EXPECT_NEAR(bound, exact, 1e-12 * std::max(1.0, exact)) << "trial " << trials;
+      ++above_interior;
+    }
+    ++trials;
+  };
+  for (int trial = 0; trial < 3000; ++trial)
+    check(random_point(rng, 1), random_point(rng, 1), random_point(rng, 1), random_point(rng, 1));
+  for (int trial = 0; trial < 500; ++trial) {
+    const Vector3d t0 = random_point(rng, 1), t1 = random_point(rng, 1);
+    const double thin = trial % 3 == 0 ? 0.0 : std::pow(10.0, -12.0 + 10.0 * (trial % 5) / 4.0);
+    const Vector3d t2 = t0 + 0.4 * (t1 - t0) + thin * random_point(rng, 1);  // sliver or collinear
+    check(random_point(rng, 1), t0, t1, t2, true);
+    check(t0 + 0.3 * (t1 - t0) + 0.2 * (t2 - t0), t0, t1, t2, true);  // in the plane
+    check(random_point(rng, 1), t0, t0, t0, true);                    // a point
+  }
+  EXPECT_GT(above_interior, 100);
+}
+
 TEST(ClassifyPointTriangle, DegenerateTrianglesGiveTheExactDistance) {
   std::mt19937 rng(14);
   for (int trial = 0; trial < 500; ++trial) {

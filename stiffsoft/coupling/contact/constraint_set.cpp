@@ -83,6 +83,10 @@ std::vector<ContactConstraint> build_constraints(const Model& model, const Eigen
     const auto [v, f] = candidates.vertex_face[k];
     const std::array<int, 4> ids{v, mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)};
     const contact::Vector12d xs = gather(x, ids);
+    // As for edge pairs below: far points are rejected by the plane's distance first.
+    if (contact::point_triangle_squared_distance_lower_bound(xs.segment<3>(0), xs.segment<3>(3), xs.segment<3>(6),
+                                                             xs.segment<3>(9)) > (1 + 1e-6) * dhat2)
+      return;
     const contact::Classified c = contact::classify_point_triangle(
         xs.segment<3>(0), xs.segment<3>(3), xs.segment<3>(6), xs.segment<3>(9));
     const double d2 = contact::squared_distance(c.kind, contact::gather_classified(c, xs));

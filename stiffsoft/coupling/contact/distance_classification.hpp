@@ -4,6 +4,7 @@
 /// the exact point–triangle and segment–segment squared distances built on it.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -154,6 +155,20 @@ inline double segment_segment_squared_distance_lower_bound(const Eigen::Vector3d
   if (aa > 0) bound = segment_line_squared_distance(eb0, eb1, ea0, a / std::sqrt(aa));
   if (bb > 0) bound = std::max(bound, segment_line_squared_distance(ea0, ea1, eb0, b / std::sqrt(bb)));
   return bound;
+}
+
+/// A lower bound on the squared distance from p to the triangle (t0, t1, t2), m²: its squared
+/// distance to the triangle's plane; 0 for a triangle with an angle below about 1e-4 rad,
+/// whose computed normal could tilt enough to overstate it. A few products against
+/// classify_point_triangle's work; a pair it puts beyond d̂ is no contact.
+inline double point_triangle_squared_distance_lower_bound(const Eigen::Vector3d& p, const Eigen::Vector3d& t0,
+                                                          const Eigen::Vector3d& t1, const Eigen::Vector3d& t2) {
+  const Eigen::Vector3d a = t1 - t0, b = t2 - t0;
+  const Eigen::Vector3d n = a.cross(b);
+  const double nn = n.squaredNorm();
+  if (!(nn > 1e-8 * a.squaredNorm() * b.squaredNorm())) return 0;
+  const double h = n.dot(p - t0);
+  return h * h / nn;
 }
 
 /// Exact squared distance between point p and the closed triangle (t0, t1, t2), m², any
