@@ -11,19 +11,24 @@ namespace stiffsoft {
 
 using contact::PrimitivePair;
 
-contact::Vector12d gather(const Eigen::MatrixX3d& x, const std::array<int, 4>& vertices) {
+namespace {
+
+/// gather() from either storage of the surface points.
+template <class Points>
+contact::Vector12d gather_points(const Points& x, const std::array<int, 4>& vertices) {
   contact::Vector12d out = contact::Vector12d::Zero();
   for (int i = 0; i < 4; ++i)
     if (vertices[i] >= 0) out.segment<3>(3 * i) = x.row(vertices[i]).transpose();
   return out;
 }
 
-contact::Vector12d gather(const PointRows& x, const std::array<int, 4>& vertices) {
-  contact::Vector12d out = contact::Vector12d::Zero();
-  for (int i = 0; i < 4; ++i)
-    if (vertices[i] >= 0) out.segment<3>(3 * i) = x.row(vertices[i]).transpose();
-  return out;
+}  // namespace
+
+contact::Vector12d gather(const Eigen::MatrixX3d& x, const std::array<int, 4>& vertices) {
+  return gather_points(x, vertices);
 }
+
+contact::Vector12d gather(const PointRows& x, const std::array<int, 4>& vertices) { return gather_points(x, vertices); }
 
 namespace {
 

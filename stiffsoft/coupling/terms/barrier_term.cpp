@@ -92,7 +92,7 @@ double BarrierTerm::max_step(const Configuration& c, const Eigen::VectorXd&, con
   m_swept.emplace(m_model, c.x, x1, 0.5 * m_settings.dhat, 0.01 * m_settings.dhat, m_broad_phase);
   const Candidates candidates = m_swept->for_ccd(m_model);
   const CollisionMesh& mesh = m_model.mesh;
-  const PointRows x0 = c.x, x1_rows = x1;  // each query reads its points from 8 places, not 24
+  const PointRows x0_rows = c.x, x1_rows = x1;  // each query reads its points from 8 places, not 24
   const auto row = [](const PointRows& m, int i) -> Eigen::Vector3d { return m.row(i).transpose(); };
   // Every query is bounded by the same t_max (1 for the point–triangle pairs, then their
   // minimum for the edge–edge pairs), never by a time another query found: the time ACCD
@@ -112,14 +112,14 @@ double BarrierTerm::max_step(const Configuration& c, const Eigen::VectorXd&, con
   };
   const double alpha_vf = smallest_time(candidates.vertex_face.size(), 1.0, [&](std::size_t k, const ccd::CcdSettings& s) {
     const auto [v, f] = candidates.vertex_face[k];
-    return ccd::point_triangle_toi(row(x0, v), row(x0, mesh.F(f, 0)), row(x0, mesh.F(f, 1)), row(x0, mesh.F(f, 2)),
-                                   row(x1_rows, v), row(x1_rows, mesh.F(f, 0)), row(x1_rows, mesh.F(f, 1)),
-                                   row(x1_rows, mesh.F(f, 2)), s);
+    return ccd::point_triangle_toi(row(x0_rows, v), row(x0_rows, mesh.F(f, 0)), row(x0_rows, mesh.F(f, 1)),
+                                   row(x0_rows, mesh.F(f, 2)), row(x1_rows, v), row(x1_rows, mesh.F(f, 0)),
+                                   row(x1_rows, mesh.F(f, 1)), row(x1_rows, mesh.F(f, 2)), s);
   });
   const double alpha_ee = smallest_time(candidates.edge_edge.size(), alpha_vf, [&](std::size_t k, const ccd::CcdSettings& s) {
     const auto [ea, eb] = candidates.edge_edge[k];
-    return ccd::edge_edge_toi(row(x0, mesh.E(ea, 0)), row(x0, mesh.E(ea, 1)), row(x0, mesh.E(eb, 0)),
-                              row(x0, mesh.E(eb, 1)), row(x1_rows, mesh.E(ea, 0)), row(x1_rows, mesh.E(ea, 1)),
+    return ccd::edge_edge_toi(row(x0_rows, mesh.E(ea, 0)), row(x0_rows, mesh.E(ea, 1)), row(x0_rows, mesh.E(eb, 0)),
+                              row(x0_rows, mesh.E(eb, 1)), row(x1_rows, mesh.E(ea, 0)), row(x1_rows, mesh.E(ea, 1)),
                               row(x1_rows, mesh.E(eb, 0)), row(x1_rows, mesh.E(eb, 1)), s);
   });
   return alpha_ee;
