@@ -169,6 +169,7 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
     for (const EnergyTerm* t : terms) alpha = std::min(alpha, t->max_step(c, p, dx));
     report.smallest_ccd_step = std::min(report.smallest_ccd_step, alpha);
     report.ccd_limited_iterations += alpha < 1;
+    if (settings.observer) settings.observer({model, terms, c, report.iterations, E, g, H, p, alpha});
     bool accepted = false;
     Eigen::MatrixX3d x_trial;
     double E_trial = E;

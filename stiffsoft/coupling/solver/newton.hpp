@@ -2,6 +2,7 @@
 /// @file Projected Newton with a CCD-bounded backtracking line search that accepts only
 /// decreasing energy (IPC, Li et al. 2020, Alg. 1; ABD, Lan et al. 2022, Alg. 1).
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,8 @@
 #include <stiffsoft/coupling/terms/energy_term.hpp>
 
 namespace stiffsoft {
+
+struct NewtonIterate;
 
 /// Newton's stopping rule and limits.
 struct NewtonSettings {
@@ -26,6 +29,23 @@ struct NewtonSettings {
   /// DOF blocks held where they are (prescribed motion already in place): their gradient rows
   /// and off-diagonal Hessian blocks are dropped and every direction is zero on them.
   std::vector<int> held_blocks;
+  /// Called with every direction, after its CCD bound and before its line search; for
+  /// diagnostics (tools/newton_probe.cpp). It may evaluate the terms elsewhere but must leave
+  /// them updated at the iterate. Empty: not called.
+  std::function<void(const NewtonIterate&)> observer;
+};
+
+/// One Newton iterate and its direction, as NewtonSettings::observer sees it.
+struct NewtonIterate {
+  const Model& model;                      ///< the model
+  const std::vector<EnergyTerm*>& terms;   ///< the minimised terms, updated at c
+  const Configuration& c;                  ///< the iterate
+  int iteration;                           ///< 0 for the minimisation's first direction
+  double energy;                           ///< E(q)
+  const Eigen::VectorXd& g;                ///< ∇E(q) (held blocks zeroed)
+  const BlockHessian& H;                   ///< the matrix p was solved with (revised if a term revised it)
+  const Eigen::VectorXd& p;                ///< the direction
+  double alpha;                            ///< the CCD bound on the step along p, ≤ 1
 };
 
 /// What one minimisation did.

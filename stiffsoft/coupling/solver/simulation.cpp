@@ -129,6 +129,7 @@ StepStats Simulation::step() {
   ns.h = h;
   ns.max_iterations = m_settings.max_iterations;
   ns.forcing.eta_max = m_settings.krylov_rtol_max;
+  ns.observer = m_newton_observer;
   Eigen::VectorXd q_new = initial_guess(q_tilde, c_n);
   const auto minimize = [&] {
     return m_prescribed_blocks.empty() ? newton_minimize(m_model, terms, q_new, *m_solver, ns, m_times, reduced_basis())

@@ -1,6 +1,7 @@
 #pragma once
 /// @file Time stepping of a model: one incremental-potential minimisation per step.
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -50,6 +51,9 @@ class Simulation {
   /// when a prescribed motion cannot be followed without intersection or an affine body's
   /// rigidity error ‖AᵀA − I‖_F would exceed SimulationSettings::rigidity_bound.
   StepStats step();
+  /// Calls `observer` with every Newton direction of the following steps (diagnostics, e.g.
+  /// tools/newton_probe.cpp); an empty function stops it.
+  void observe_newton(std::function<void(const NewtonIterate&)> observer) { m_newton_observer = std::move(observer); }
   /// The state now (a copy).
   SimulationState state() const;
   /// Continues from `s`, taken from a Simulation of the same model and settings;
@@ -152,6 +156,7 @@ class Simulation {
   JointTerm m_joints;
   DampingTerm m_damping;
   std::vector<Eigen::Vector3d> m_joint_forces;
+  std::function<void(const NewtonIterate&)> m_newton_observer;
   std::vector<int> m_prescribed_blocks;  // DOF blocks of kinematic bodies and prescribed soft nodes
   Eigen::VectorXd m_q, m_qdot, m_q_prev, m_qdot_prev, m_gravity_q;
   double m_time = 0;

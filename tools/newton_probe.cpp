@@ -1,0 +1,319 @@
+/// @file newton_probe: the whole system's derivatives at the states of a real run, against
+/// finite differences (issue 17's diagnosis). It continues a run from its checkpoint (or starts
+/// the scene) and, at every Newton direction of the chosen steps, compares
+///  - the gradient with central differences of the incremental potential E, along the
+///    direction p and along a random direction, for E and for each term;
+///  - the matrix p was solved with, H p, with central differences of the gradient along p; and
+///    the curvature pᵀ H p with the exact curvature pᵀ ∇²E p, for E and for each term (each
+///    term's own projected Hessian): the ratio says how much the PSD projection (and friction's
+///    revision) changes Newton's model along the direction it takes;
+///  - the energy decrease of the admissible step α p (α the CCD bound) with the quadratic
+///    model's, ρ = ΔE / (α gᵀp + ½ α² pᵀHp): near 1 where the model holds over the step.
+/// Every difference is taken at three step lengths (surface displacements of 1e-4, 1e-5 and
+/// 1e-6 d̂) and the smallest error reported. The probes leave the run's iterates unchanged:
+/// each Newton iteration continues from its own state. `newton_probe --help` lists the options.
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <stiffsoft/coupling/contact/barrier_potential.hpp>
+#include <stiffsoft/coupling/terms/barrier_term.hpp>
+#include <stiffsoft/io/checkpoint.hpp>
+#include <stiffsoft/scene/make_simulation.hpp>
+
+using namespace stiffsoft;
+
+namespace {
+
+/// Every term's value and gradient at one configuration.
+struct Sample {
+  std::vector<double> value;
+  std::vector<Eigen::VectorXd> gradient;
+};
+
+/// The terms updated at q and evaluated there, term by term.
+Sample sample(const NewtonIterate& it, const Eigen::VectorXd& q) {
+  const Eigen::MatrixX3d x = it.model.surface(q);
+  const Configuration c{q, x};
+  Sample s;
+  for (EnergyTerm* t : it.terms) t->update(c);
+  for (const EnergyTerm* t : it.terms) {
+    s.value.push_back(t->value(c));
+    s.gradient.push_back(Eigen::VectorXd::Zero(q.size()));
+    t->add_gradient(c, s.gradient.back());
+  }
+  return s;
+}
+
+double sum(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x;
+  return s;
+}
+
+Eigen::VectorXd sum(const std::vector<Eigen::VectorXd>& v) {
+  Eigen::VectorXd s = v.front();
+  for (std::size_t k = 1; k < v.size(); ++k) s += v[k];
+  return s;
+}
+
+/// |a − b| / max(|a|, |b|), 0 when both are 0.
+double relative(double a, double b) {
+  const double scale = std::max(std::abs(a), std::abs(b));
+  return scale > 0 ? std::abs(a - b) / scale : 0.0;
+}
+
+/// Central differences along v at the three step lengths: per length, the samples at q ± ε v.
+struct Differences {
+  std::vector<double> eps;
+  std::vector<Sample> plus, minus;
+};
+
+Differences differences(const NewtonIterate& it, const Eigen::VectorXd& v, double dhat) {
+  const Eigen::MatrixX3d dx = it.model.surface_step(v);
+  const double reach = dx.rows() ? dx.rowwise().norm().maxCoeff() : 0.0;  // surface displacement per unit of v
+  Differences d;
+  for (double fraction : {1e-4, 1e-5, 1e-6}) {
+    const double eps = fraction * dhat / std::max(reach, 1e-300);
+    d.eps.push_back(eps);
+    d.plus.push_back(sample(it, it.c.q + eps * v));
+    d.minus.push_back(sample(it, it.c.q - eps * v));
+  }
+  return d;
+}
+
+/// The smallest error over the step lengths of the directional derivative gᵀv (term `t`, or
+/// all terms with t < 0) against the differences of the value.
+double gradient_error(const Differences& d, const Sample& at, const Eigen::VectorXd& v, int t) {
+  const double exact = t < 0 ? sum(at.gradient).dot(v) : at.gradient[t].dot(v);
+  double best = 1e300;
+  for (std::size_t k = 0; k < d.eps.size(); ++k) {
+    const double plus = t < 0 ? sum(d.plus[k].value) : d.plus[k].value[t];
+    const double minus = t < 0 ? sum(d.minus[k].value) : d.minus[k].value[t];
+    best = std::min(best, relative(exact, (plus - minus) / (2 * d.eps[k])));
+  }
+  return best;
+}
+
+/// ∇²E v (term t, or all with t < 0) by differences of the gradient at the step length whose
+/// result agrees best with the next shorter one (the last pair's shorter one).
+Eigen::VectorXd hessian_times(const Differences& d, int t) {
+  std::vector<Eigen::VectorXd> Hv;
+  for (std::size_t k = 0; k < d.eps.size(); ++k) {
+    const Eigen::VectorXd plus = t < 0 ? sum(d.plus[k].gradient) : d.plus[k].gradient[t];
+    const Eigen::VectorXd minus = t < 0 ? sum(d.minus[k].gradient) : d.minus[k].gradient[t];
+    Hv.push_back((plus - minus) / (2 * d.eps[k]));
+  }
+  std::size_t best = 0;
+  double best_change = 1e300;
+  for (std::size_t k = 0; k + 1 < Hv.size(); ++k) {
+    const double change = (Hv[k] - Hv[k + 1]).norm() / std::max(Hv[k + 1].norm(), 1e-300);
+    if (change < best_change) best_change = change, best = k + 1;
+  }
+  return Hv[best];
+}
+
+/// Stencil kinds of the barrier's breakdown: its primitive pair, mollified edge pairs apart.
+constexpr const char* kKinds[] = {"vertex_vertex", "edge_vertex", "edge_edge", "face_vertex", "edge_edge_mollified"};
+constexpr int kKindCount = 5;
+
+/// One probed direction.
+struct Row {
+  int step, iteration, contacts;
+  double alpha, speed, gradient_p, gradient_random, hessian_p, curvature_ratio, rho;
+  /// ‖g(q + αp) − g − α H p‖ / ‖g‖: how far the gradient at the step's end is from the
+  /// quadratic model's (0 for a quadratic E), the nonlinearity Newton meets over the step.
+  double gradient_model;
+  std::vector<double> term_gradient, term_curvature_ratio;
+  /// Per term: ‖g_t(q + αp) − g_t − α H_t p‖ / ‖g‖ (H_t the term's own Hessian).
+  std::vector<double> term_gradient_model;
+  /// Per barrier stencil kind: κ Σ dxᵀ (Π₊∇²P − ∇²P) dx over its stencils, the curvature the
+  /// projection adds along p (J m⁻²·m², i.e. J), as a share of the barrier's whole addition.
+  std::array<double, kKindCount> projection_share{};
+};
+
+/// The barrier's curvature along dx that the PSD projection adds, by stencil kind (J).
+std::array<double, kKindCount> projection_excess(const BarrierTerm& barrier, const Configuration& c,
+                                                 const Eigen::MatrixX3d& dx) {
+  std::array<double, kKindCount> excess{};
+  for (const ContactConstraint& k : barrier.constraints()) {
+    const contact::Vector12d x = gather(c.x, k.vertices), v = gather(dx, k.vertices);
+    const contact::Matrix12d exact = contact::barrier_potential_hessian(k.stencil, x, barrier.dhat(), false);
+    const contact::Matrix12d projected = contact::barrier_potential_hessian(k.stencil, x, barrier.dhat(), true);
+    const int kind = contact::is_mollified(k.stencil) && contact::mollifier_active(k.stencil, x) ? 4 : int(k.stencil.kind);
+    excess[kind] += barrier.kappa() * k.weight * v.dot((projected - exact) * v);
+  }
+  return excess;
+}
+
+Row probe(const NewtonIterate& it, double dhat, double h, std::mt19937& rng) {
+  const Eigen::VectorXd& q = it.c.q;
+  const Eigen::VectorXd& p = it.p;
+  const int nt = int(it.terms.size());
+  const Sample at = sample(it, q);
+  Row row{};
+  row.iteration = it.iteration;
+  const Eigen::MatrixX3d dx = it.model.surface_step(p);
+  row.speed = (dx.rows() ? dx.rowwise().norm().maxCoeff() : 0.0) / h;
+  row.alpha = it.alpha;
+
+  std::normal_distribution<double> normal;
+  Eigen::VectorXd r(q.size());
+  for (Eigen::Index i = 0; i < r.size(); ++i) r[i] = normal(rng);
+  r = r.cwiseProduct(p.cwiseAbs().cwiseMax(1e-12 * p.cwiseAbs().maxCoeff()));  // each DOF on p's scale
+
+  const Differences along_p = differences(it, p, dhat);
+  const Differences along_r = differences(it, r, dhat);
+  row.gradient_p = gradient_error(along_p, at, p, -1);
+  row.gradient_random = gradient_error(along_r, at, r, -1);
+  for (int t = 0; t < nt; ++t)
+    row.term_gradient.push_back(std::max(gradient_error(along_p, at, p, t), gradient_error(along_r, at, r, t)));
+
+  const Eigen::VectorXd Hp = it.H.multiply(p);
+  const Eigen::VectorXd exact_Hp = hessian_times(along_p, -1);
+  row.hessian_p = (Hp - exact_Hp).norm() / std::max(exact_Hp.norm(), 1e-300);
+  row.curvature_ratio = p.dot(Hp) / p.dot(exact_Hp);
+  const Sample end = sample(it, q + it.alpha * p);
+  const double g_norm = std::max(it.g.norm(), 1e-300);
+  row.gradient_model = (sum(end.gradient) - sum(at.gradient) - it.alpha * Hp).norm() / g_norm;
+  BlockHessian H_t(it.model.blocks);
+  for (int t = 0; t < nt; ++t) {
+    H_t.clear();
+    it.terms[t]->add_hessian(it.c, H_t);
+    const Eigen::VectorXd Htp = H_t.multiply(p);
+    const double exact = p.dot(hessian_times(along_p, t));
+    const double model = p.dot(Htp);
+    row.term_curvature_ratio.push_back(exact != 0 ? model / exact : (model == 0 ? 1.0 : INFINITY));
+    row.term_gradient_model.push_back((end.gradient[t] - at.gradient[t] - it.alpha * Htp).norm() / g_norm);
+  }
+
+  for (const EnergyTerm* t : it.terms)
+    if (const auto* barrier = dynamic_cast<const BarrierTerm*>(t)) {
+      const auto excess = projection_excess(*barrier, it.c, dx);
+      double total = 0;
+      for (double e : excess) total += e;
+      for (int k = 0; k < kKindCount; ++k) row.projection_share[k] = total > 0 ? excess[k] / total : 0.0;
+    }
+
+  const double predicted = it.alpha * it.g.dot(p) + 0.5 * it.alpha * it.alpha * p.dot(Hp);
+  const double actual = sum(end.value) - sum(at.value);
+  row.rho = predicted != 0 ? actual / predicted : NAN;
+  for (EnergyTerm* t : it.terms) t->update(it.c);  // as Newton left them
+  return row;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"newton_probe: gradient, Hessian and model checks of every Newton direction at a run's states"};
+  std::string scene_file, run_dir, csv;
+  int steps = 10, threads = 1;
+  unsigned seed = 1;
+  app.add_option("scene", scene_file, "scene file (JSON)")->required()->check(CLI::ExistingFile);
+  app.add_option("--resume", run_dir, "output folder of a run of that scene: start from its checkpoint.bin");
+  app.add_option("--steps", steps, "steps to take and probe")->check(CLI::PositiveNumber);
+  app.add_option("--threads", threads, "threads")->check(CLI::PositiveNumber);
+  app.add_option("--seed", seed, "seed of the random directions");
+  app.add_option("--csv", csv, "write one row per probed direction here");
+  CLI11_PARSE(app, argc, argv);
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+
+  try {
+    SceneSimulation run = make_simulation(scene_file);
+    Simulation& sim = run.simulation;
+    if (!run_dir.empty()) {
+      const Checkpoint checkpoint = read_checkpoint(std::filesystem::path(run_dir) / "checkpoint.bin");
+      if (checkpoint.scene_fingerprint != scene_fingerprint(run.scene))
+        throw ResumeError(run_dir + "/checkpoint.bin: written for another version of " + scene_file);
+      sim.restore(checkpoint.state);
+    }
+    const double dhat = sim.settings().dhat, h = sim.settings().h;
+    std::mt19937 rng(seed);
+    std::vector<Row> rows;
+    std::vector<std::string> names;
+    int step = sim.state().step + 1;
+    sim.observe_newton([&](const NewtonIterate& it) {
+      if (names.empty())
+        for (const EnergyTerm* t : it.terms) names.push_back(t->name());
+      Row row = probe(it, dhat, h, rng);
+      row.step = step;
+      rows.push_back(row);
+    });
+    std::ofstream out;
+    if (!csv.empty()) out.open(csv);
+    for (int k = 0; k < steps; ++k, ++step) {
+      const std::size_t first = rows.size();
+      const StepStats stats = sim.step();
+      for (std::size_t i = first; i < rows.size(); ++i) rows[i].contacts = stats.contacts;
+      spdlog::info("step {}: {} iterations{}", stats.step, stats.newton.iterations,
+                   stats.newton.converged ? "" : " (not converged)");
+    }
+    if (out) {
+      out << "step,iteration,contacts,alpha,speed,gradient_p,gradient_random,hessian_p,curvature_ratio,rho,gradient_model";
+      for (const std::string& n : names) out << ",gradient_" << n;
+      for (const std::string& n : names) out << ",curvature_ratio_" << n;
+      for (const std::string& n : names) out << ",gradient_model_" << n;
+      for (const char* kind : kKinds) out << ",projection_share_" << kind;
+      out << "\n";
+      for (const Row& r : rows) {
+        out << r.step << ',' << r.iteration << ',' << r.contacts << ',' << r.alpha << ',' << r.speed << ','
+            << r.gradient_p << ',' << r.gradient_random << ',' << r.hessian_p << ',' << r.curvature_ratio << ','
+            << r.rho << ',' << r.gradient_model;
+        for (double v : r.term_gradient) out << ',' << v;
+        for (double v : r.term_curvature_ratio) out << ',' << v;
+        for (double v : r.term_gradient_model) out << ',' << v;
+        for (double v : r.projection_share) out << ',' << v;
+        out << "\n";
+      }
+    }
+    const auto column = [&](auto get) {
+      std::vector<double> v;
+      for (const Row& r : rows) v.push_back(get(r));
+      return v;
+    };
+    const auto report = [&](const std::string& what, const std::vector<double>& v) {
+      std::cout << "| " << what << " | " << median(v) << " | " << *std::min_element(v.begin(), v.end()) << " | "
+                << *std::max_element(v.begin(), v.end()) << " |\n";
+    };
+    if (rows.empty()) {
+      std::cout << "no Newton direction was probed\n";
+      return 0;
+    }
+    std::cout << "| " << rows.size() << " directions | median | min | max |\n|---|---|---|---|\n";
+    report("gradient error along p", column([](const Row& r) { return r.gradient_p; }));
+    report("gradient error, random direction", column([](const Row& r) { return r.gradient_random; }));
+    report("‖H p − ∇²E p‖ / ‖∇²E p‖", column([](const Row& r) { return r.hessian_p; }));
+    report("pᵀHp / pᵀ∇²E p", column([](const Row& r) { return r.curvature_ratio; }));
+    report("ρ = ΔE / model", column([](const Row& r) { return r.rho; }));
+    report("‖g(q + αp) − g − αHp‖ / ‖g‖", column([](const Row& r) { return r.gradient_model; }));
+    for (std::size_t t = 0; t < names.size(); ++t) {
+      report("gradient error, " + names[t], column([&](const Row& r) { return r.term_gradient[t]; }));
+      report("curvature ratio, " + names[t], column([&](const Row& r) { return r.term_curvature_ratio[t]; }));
+      report("gradient model error, " + names[t], column([&](const Row& r) { return r.term_gradient_model[t]; }));
+    }
+    for (int k = 0; k < kKindCount; ++k)
+      report(std::string("share of the barrier's projection, ") + kKinds[k],
+             column([&](const Row& r) { return r.projection_share[k]; }));
+    return 0;
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 1;
+  }
+}
