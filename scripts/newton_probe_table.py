@@ -2,7 +2,8 @@
 """Newton's model by phase of a step, from the CSV that tools/newton_probe writes
 (docs/newton.md, session 24). Each direction goes into one group: CCD-limited (α < 1), full
 steps before the step's last four, or one of the last four; per group the medians of the
-curvature ratio pᵀHp / pᵀ∇²Ep, the error of H p, ρ = ΔE / model, and the gradient's distance
+curvature ratio pᵀHp / pᵀ∇²Ep, the error of H p, ρ = ΔE / model, the slope φ′(α) / φ′(0) of
+E along p at the step's end (0 at the line's minimum), and the gradient's distance
 from the quadratic model at the step's end, ‖g(q + αp) − g − αHp‖ / ‖g‖, in all and per term.
 
 Usage: newton_probe_table.py PROBE.csv   (prints a Markdown table)
@@ -39,13 +40,14 @@ def main(path):
         values = [float(r[column]) for r in group]
         return f"{statistics.median(values):.3g}" if values else "–"
 
-    head = ["directions", "count", "pᵀHp / pᵀ∇²Ep", "‖Hp − ∇²Ep‖ / ‖∇²Ep‖", "ρ", "‖g(q+αp) − g − αHp‖ / ‖g‖"]
+    head = ["directions", "count", "pᵀHp / pᵀ∇²Ep", "‖Hp − ∇²Ep‖ / ‖∇²Ep‖", "ρ", "φ′(α) / φ′(0)",
+            "‖g(q+αp) − g − αHp‖ / ‖g‖"]
     head += [f"… {t}" for t in terms] + ["speed (m/s)"]
     print("| " + " | ".join(head) + " |")
     print("|" + "---|" * len(head))
     for name in GROUPS:
         g = groups[name]
-        cells = [name, str(len(g))] + [median(g, c) for c in ("curvature_ratio", "hessian_p", "rho", "gradient_model")]
+        cells = [name, str(len(g))] + [median(g, c) for c in ("curvature_ratio", "hessian_p", "rho", "slope_ratio", "gradient_model")]
         cells += [median(g, "gradient_model_" + t) for t in terms] + [median(g, "speed")]
         print("| " + " | ".join(cells) + " |")
 

@@ -140,6 +140,9 @@ struct Row {
   /// ‖g(q + αp) − g − α H p‖ / ‖g‖: how far the gradient at the step's end is from the
   /// quadratic model's (0 for a quadratic E), the nonlinearity Newton meets over the step.
   double gradient_model;
+  /// φ′(α) / φ′(0) for φ(t) = E(q + t p): 1 where E still falls as fast as at q, 0 at the
+  /// line's minimum, negative past it.
+  double slope_ratio;
   std::vector<double> term_gradient, term_curvature_ratio;
   /// Per term: ‖g_t(q + αp) − g_t − α H_t p‖ / ‖g‖ (H_t the term's own Hessian).
   std::vector<double> term_gradient_model;
@@ -192,6 +195,7 @@ Row probe(const NewtonIterate& it, double dhat, double h, std::mt19937& rng) {
   const Sample end = sample(it, q + it.alpha * p);
   const double g_norm = std::max(it.g.norm(), 1e-300);
   row.gradient_model = (sum(end.gradient) - sum(at.gradient) - it.alpha * Hp).norm() / g_norm;
+  row.slope_ratio = sum(end.gradient).dot(p) / it.g.dot(p);
   BlockHessian H_t(it.model.blocks);
   for (int t = 0; t < nt; ++t) {
     H_t.clear();
@@ -280,7 +284,7 @@ int main(int argc, char** argv) {
                    stats.newton.converged ? "" : " (not converged)");
     }
     if (out) {
-      out << "step,iteration,contacts,alpha,speed,gradient_p,gradient_random,hessian_p,curvature_ratio,rho,gradient_model";
+      out << "step,iteration,contacts,alpha,speed,gradient_p,gradient_random,hessian_p,curvature_ratio,rho,gradient_model,slope_ratio";
       for (const std::string& n : names) out << ",gradient_" << n;
       for (const std::string& n : names) out << ",curvature_ratio_" << n;
       for (const std::string& n : names) out << ",gradient_model_" << n;
@@ -289,7 +293,7 @@ int main(int argc, char** argv) {
       for (const Row& r : rows) {
         out << r.step << ',' << r.iteration << ',' << r.contacts << ',' << r.alpha << ',' << r.speed << ','
             << r.gradient_p << ',' << r.gradient_random << ',' << r.hessian_p << ',' << r.curvature_ratio << ','
-            << r.rho << ',' << r.gradient_model;
+            << r.rho << ',' << r.gradient_model << ',' << r.slope_ratio;
         for (double v : r.term_gradient) out << ',' << v;
         for (double v : r.term_curvature_ratio) out << ',' << v;
         for (double v : r.term_gradient_model) out << ',' << v;
@@ -318,6 +322,7 @@ int main(int argc, char** argv) {
     report("pᵀHp / pᵀ∇²E p", column([](const Row& r) { return r.curvature_ratio; }));
     report("ρ = ΔE / model", column([](const Row& r) { return r.rho; }));
     report("‖g(q + αp) − g − αHp‖ / ‖g‖", column([](const Row& r) { return r.gradient_model; }));
+    report("φ′(α) / φ′(0) along p", column([](const Row& r) { return r.slope_ratio; }));
     for (std::size_t t = 0; t < names.size(); ++t) {
       report("gradient error, " + names[t], column([&](const Row& r) { return r.term_gradient[t]; }));
       report("curvature ratio, " + names[t], column([&](const Row& r) { return r.term_curvature_ratio[t]; }));
