@@ -4,7 +4,8 @@
 steps before the step's last four, or one of the last four; per group the medians of the
 curvature ratio pᵀHp / pᵀ∇²Ep, the error of H p, ρ = ΔE / model, the slope φ′(α) / φ′(0) of
 E along p at the step's end (0 at the line's minimum), and the gradient's distance
-from the quadratic model at the step's end, ‖g(q + αp) − g − αHp‖ / ‖g‖, in all and per term.
+from the quadratic model at the step's end, ‖g(q + αp) − g − αHp‖ / ‖g‖, in all, from the
+contacts that entered d̂ during the step, and per term.
 
 Usage: newton_probe_table.py PROBE.csv   (prints a Markdown table)
 """
@@ -41,13 +42,13 @@ def main(path):
         return f"{statistics.median(values):.3g}" if values else "–"
 
     head = ["directions", "count", "pᵀHp / pᵀ∇²Ep", "‖Hp − ∇²Ep‖ / ‖∇²Ep‖", "ρ", "φ′(α) / φ′(0)",
-            "‖g(q+αp) − g − αHp‖ / ‖g‖"]
+            "‖g(q+αp) − g − αHp‖ / ‖g‖", "… new contacts"]
     head += [f"… {t}" for t in terms] + ["speed (m/s)"]
     print("| " + " | ".join(head) + " |")
     print("|" + "---|" * len(head))
     for name in GROUPS:
         g = groups[name]
-        cells = [name, str(len(g))] + [median(g, c) for c in ("curvature_ratio", "hessian_p", "rho", "slope_ratio", "gradient_model")]
+        cells = [name, str(len(g))] + [median(g, c) for c in ("curvature_ratio", "hessian_p", "rho", "slope_ratio", "gradient_model", "new_contacts")]
         cells += [median(g, "gradient_model_" + t) for t in terms] + [median(g, "speed")]
         print("| " + " | ".join(cells) + " |")
 

@@ -24,10 +24,12 @@
 #include <iostream>
 #include <memory>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
 #include <stiffsoft/coupling/contact/barrier_potential.hpp>
+#include <stiffsoft/coupling/model/stencil_jacobian.hpp>
 #include <stiffsoft/coupling/terms/barrier_term.hpp>
 #include <stiffsoft/io/checkpoint.hpp>
 #include <stiffsoft/scene/make_simulation.hpp>
@@ -143,6 +145,9 @@ struct Row {
   /// φ′(α) / φ′(0) for φ(t) = E(q + t p): 1 where E still falls as fast as at q, 0 at the
   /// line's minimum, negative past it.
   double slope_ratio;
+  /// ‖gradient at the step's end of the barrier stencils that were not active at q‖ / ‖g‖:
+  /// the part of the model's error from contacts that entered d̂ during the step.
+  double new_contacts;
   std::vector<double> term_gradient, term_curvature_ratio;
   /// Per term: ‖g_t(q + αp) − g_t − α H_t p‖ / ‖g‖ (H_t the term's own Hessian).
   std::vector<double> term_gradient_model;
@@ -170,11 +175,23 @@ Row probe(const NewtonIterate& it, double dhat, double h, std::mt19937& rng) {
   const Eigen::VectorXd& p = it.p;
   const int nt = int(it.terms.size());
   const Sample at = sample(it, q);
+  const BarrierTerm* barrier = nullptr;
+  for (const EnergyTerm* t : it.terms)
+    if (const auto* b = dynamic_cast<const BarrierTerm*>(t)) barrier = b;
+  std::set<std::array<int, 4>> active;  // the stencils active at q, by their vertices
+  if (barrier)
+    for (const ContactConstraint& k : barrier->constraints()) active.insert(k.vertices);
   Row row{};
   row.iteration = it.iteration;
   const Eigen::MatrixX3d dx = it.model.surface_step(p);
   row.speed = (dx.rows() ? dx.rowwise().norm().maxCoeff() : 0.0) / h;
   row.alpha = it.alpha;
+  if (barrier) {  // its constraints are those at q until the next sample()
+    const auto excess = projection_excess(*barrier, it.c, dx);
+    double total = 0;
+    for (double e : excess) total += e;
+    for (int k = 0; k < kKindCount; ++k) row.projection_share[k] = total > 0 ? excess[k] / total : 0.0;
+  }
 
   std::normal_distribution<double> normal;
   Eigen::VectorXd r(q.size());
@@ -196,6 +213,18 @@ Row probe(const NewtonIterate& it, double dhat, double h, std::mt19937& rng) {
   const double g_norm = std::max(it.g.norm(), 1e-300);
   row.gradient_model = (sum(end.gradient) - sum(at.gradient) - it.alpha * Hp).norm() / g_norm;
   row.slope_ratio = sum(end.gradient).dot(p) / it.g.dot(p);
+  if (barrier) {
+    Eigen::VectorXd g_new = Eigen::VectorXd::Zero(q.size());
+    const Eigen::VectorXd q_end = q + it.alpha * p;
+    const Eigen::MatrixX3d x_end = it.model.surface(q_end);
+    for (const ContactConstraint& k : barrier->constraints())  // updated at the step's end by sample()
+      if (!active.count(k.vertices))
+        StencilJacobian(it.model, k.vertices)
+            .scatter_gradient(barrier->kappa() * k.weight *
+                                  contact::barrier_potential_gradient(k.stencil, gather(x_end, k.vertices), barrier->dhat()),
+                              g_new);
+    row.new_contacts = g_new.norm() / g_norm;
+  }
   BlockHessian H_t(it.model.blocks);
   for (int t = 0; t < nt; ++t) {
     H_t.clear();
@@ -207,13 +236,6 @@ Row probe(const NewtonIterate& it, double dhat, double h, std::mt19937& rng) {
     row.term_gradient_model.push_back((end.gradient[t] - at.gradient[t] - it.alpha * Htp).norm() / g_norm);
   }
 
-  for (const EnergyTerm* t : it.terms)
-    if (const auto* barrier = dynamic_cast<const BarrierTerm*>(t)) {
-      const auto excess = projection_excess(*barrier, it.c, dx);
-      double total = 0;
-      for (double e : excess) total += e;
-      for (int k = 0; k < kKindCount; ++k) row.projection_share[k] = total > 0 ? excess[k] / total : 0.0;
-    }
 
   const double predicted = it.alpha * it.g.dot(p) + 0.5 * it.alpha * it.alpha * p.dot(Hp);
   const double actual = sum(end.value) - sum(at.value);
@@ -284,7 +306,7 @@ int main(int argc, char** argv) {
                    stats.newton.converged ? "" : " (not converged)");
     }
     if (out) {
-      out << "step,iteration,contacts,alpha,speed,gradient_p,gradient_random,hessian_p,curvature_ratio,rho,gradient_model,slope_ratio";
+      out << "step,iteration,contacts,alpha,speed,gradient_p,gradient_random,hessian_p,curvature_ratio,rho,gradient_model,slope_ratio,new_contacts";
       for (const std::string& n : names) out << ",gradient_" << n;
       for (const std::string& n : names) out << ",curvature_ratio_" << n;
       for (const std::string& n : names) out << ",gradient_model_" << n;
@@ -293,7 +315,7 @@ int main(int argc, char** argv) {
       for (const Row& r : rows) {
         out << r.step << ',' << r.iteration << ',' << r.contacts << ',' << r.alpha << ',' << r.speed << ','
             << r.gradient_p << ',' << r.gradient_random << ',' << r.hessian_p << ',' << r.curvature_ratio << ','
-            << r.rho << ',' << r.gradient_model << ',' << r.slope_ratio;
+            << r.rho << ',' << r.gradient_model << ',' << r.slope_ratio << ',' << r.new_contacts;
         for (double v : r.term_gradient) out << ',' << v;
         for (double v : r.term_curvature_ratio) out << ',' << v;
         for (double v : r.term_gradient_model) out << ',' << v;
@@ -323,6 +345,7 @@ int main(int argc, char** argv) {
     report("ρ = ΔE / model", column([](const Row& r) { return r.rho; }));
     report("‖g(q + αp) − g − αHp‖ / ‖g‖", column([](const Row& r) { return r.gradient_model; }));
     report("φ′(α) / φ′(0) along p", column([](const Row& r) { return r.slope_ratio; }));
+    report("‖g of contacts new at the step's end‖ / ‖g‖", column([](const Row& r) { return r.new_contacts; }));
     for (std::size_t t = 0; t < names.size(); ++t) {
       report("gradient error, " + names[t], column([&](const Row& r) { return r.term_gradient[t]; }));
       report("curvature ratio, " + names[t], column([&](const Row& r) { return r.term_curvature_ratio[t]; }));
