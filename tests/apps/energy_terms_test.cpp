@@ -498,6 +498,37 @@ TEST(GaussNewtonBarrier, HessianIsTheSumOfTheStencilFormsAndPsd) {
   EXPECT_EQ(f.step.gradient(terms, f.q), projected.step.gradient(projected.step.terms("barrier"), projected.q));
 }
 
+TEST(StencilJacobian, LowRankBlocksEqualTheBlocksOfTheFormedHessian) {
+  // Friction's rank-2 path, (B J)ᵀ C (B J), against Jᵀ (Bᵀ C B) J on every lagged stencil of
+  // the model (affine–soft, soft–fixed and affine-only slots), with random B and C.
+  Fixture f;
+  std::mt19937 rng(7);
+  std::normal_distribution<double> normal;
+  int stencils = 0;
+  for (const ContactConstraint& k : f.step.lagged) {
+    Eigen::Matrix<double, 2, 12> B;
+    for (Eigen::Index i = 0; i < B.size(); ++i) B.data()[i] = normal(rng);
+    Eigen::Matrix2d C;
+    C << normal(rng), normal(rng), 0, normal(rng);
+    C(1, 0) = C(0, 1);
+    const StencilJacobian J(f.model, k.vertices);
+    StencilHessian low_rank, formed;
+    J.low_rank_block_hessians(B, C, low_rank);
+    J.block_hessians(contact::Matrix12d(B.transpose() * C * B), formed);
+    ASSERT_EQ(low_rank.count, formed.count);
+    for (int b = 0; b < formed.count; ++b) {
+      EXPECT_EQ(low_rank.row[b], formed.row[b]);
+      EXPECT_EQ(low_rank.column[b], formed.column[b]);
+      const int size = f.model.blocks[formed.row[b]].size * f.model.blocks[formed.column[b]].size;
+      const Eigen::Map<const Eigen::VectorXd> a(low_rank.values.data() + low_rank.at[b], size),
+          e(formed.values.data() + formed.at[b], size);
+      EXPECT_LT((a - e).norm(), 1e-12 * std::max(1.0, e.norm())) << "stencil " << stencils << ", block " << b;
+    }
+    ++stencils;
+  }
+  EXPECT_GT(stencils, 0);
+}
+
 TEST_P(WholeTerm, AssembledHessianIsSymmetricPositiveSemiDefinite) {
   Fixture f;
   const std::vector<EnergyTerm*> terms = f.step.terms(GetParam());

@@ -78,11 +78,11 @@ Vector12d friction_potential_gradient(const FrictionStencil& f, const Vector12d&
   return mu * f.normal_force * friction_f1_over_y(u.norm(), epsv_h) * (T.transpose() * u);
 }
 
-Matrix12d friction_potential_hessian(const FrictionStencil& f, const Vector12d& dx, double mu,
-                                     double epsv_h, bool project_psd) {
-  if (mu == 0.0 || f.normal_force == 0.0) return Matrix12d::Zero();
-  const Eigen::Matrix<double, 2, 12> T = tangent_operator(f);
-  const Eigen::Vector2d u = T * dx;
+FrictionHessianFactors friction_hessian_factors(const FrictionStencil& f, const Vector12d& dx, double mu,
+                                                double epsv_h, bool project_psd) {
+  FrictionHessianFactors out{tangent_operator(f), Eigen::Matrix2d::Zero()};
+  if (mu == 0.0 || f.normal_force == 0.0) return out;
+  const Eigen::Vector2d u = out.T * dx;
   const double y = u.norm();
   Eigen::Matrix2d M = friction_f1_over_y(y, epsv_h) * Eigen::Matrix2d::Identity();
   if (y > 0.0) {
@@ -91,8 +91,16 @@ Matrix12d friction_potential_hessian(const FrictionStencil& f, const Vector12d& 
     M -= w * uh * uh.transpose();
   }
   if (project_psd) M = project_to_psd<2>(M);
+  out.C = (mu * f.normal_force) * M;
+  return out;
+}
+
+Matrix12d friction_potential_hessian(const FrictionStencil& f, const Vector12d& dx, double mu,
+                                     double epsv_h, bool project_psd) {
+  if (mu == 0.0 || f.normal_force == 0.0) return Matrix12d::Zero();
+  const FrictionHessianFactors h = friction_hessian_factors(f, dx, mu, epsv_h, project_psd);
   // Coefficient-based product: Eigen would send a 12×2×12 product to its blocked GEMM.
-  return (mu * f.normal_force) * T.transpose().lazyProduct(M * T);
+  return h.T.transpose().lazyProduct(h.C * h.T);
 }
 
 Matrix12d friction_majorizer_hessian(const FrictionStencil& f, const Vector12d& dx, double mu,

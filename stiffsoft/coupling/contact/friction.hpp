@@ -67,6 +67,18 @@ Vector12d friction_potential_gradient(const FrictionStencil& f, const Vector12d&
 Matrix12d friction_potential_hessian(const FrictionStencil& f, const Vector12d& dx, double mu,
                                      double epsv_h, bool project_psd);
 
+/// friction_potential_hessian() as its factors: ∇²D = Tᵀ C T with T the tangent operator and
+/// C = μ λ M (projected as asked), so that a caller can map T through its own Jacobian before
+/// forming any 12×12 product (rank ≤ 2). C is zero when μ λ = 0.
+struct FrictionHessianFactors {
+  Eigen::Matrix<double, 2, 12> T;  ///< tangent_operator(f)
+  Eigen::Matrix2d C;               ///< μ λ M, N/m
+};
+
+/// The factors of friction_potential_hessian(f, dx, mu, epsv_h, project_psd).
+FrictionHessianFactors friction_hessian_factors(const FrictionStencil& f, const Vector12d& dx, double mu,
+                                                double epsv_h, bool project_psd);
+
 /// The isotropic majorizer of D's Hessian: μ λ Tᵀ (f₁(y)/y) I T, N/m. Its quadratic model lies
 /// above D in every direction (f₀(‖v‖) is concave in ‖v‖², so the quadratic in v that touches
 /// it at u with slope f₁(y)/y bounds it from above), and it exceeds the exact Hessian by

@@ -80,6 +80,36 @@ void StencilJacobian::block_hessians(const Eigen::Matrix<double, 12, 12>& H_x, S
   }
 }
 
+void StencilJacobian::low_rank_block_hessians(const Eigen::Matrix<double, 2, 12>& B, const Eigen::Matrix2d& C,
+                                              StencilHessian& out) const {
+  // (B J)_s: the 2 × columns[s] rows of each slot, in q's order.
+  std::array<Eigen::Matrix<double, 2, 12>, 4> BJ;
+  for (int s = 0; s < slots; ++s) BJ[s].setZero();
+  for (int a = 0; a < 4; ++a) {
+    const int s = slot_of[a];
+    if (s < 0) continue;
+    for (int k = 0; k < weights(columns[s]); ++k)
+      for (int i = 0; i < 3; ++i) BJ[s].col(kDof[k][i]) += w[a][k] * B.col(3 * a + i);
+  }
+  out.count = 0;
+  int next = 0;
+  for (int s = 0; s < slots; ++s) {
+    const Eigen::Matrix<double, 2, 12> CBJ_s = C * BJ[s];
+    for (int t = 0; t < slots; ++t) {
+      if (block[t] > block[s]) continue;
+      if (next + columns[t] * columns[s] > StencilHessian::kCapacity)
+        throw std::logic_error("StencilJacobian: a stencil spans more DOFs than two affine bodies");
+      Eigen::Map<Eigen::MatrixXd>(out.values.data() + next, columns[t], columns[s]) =
+          BJ[t].leftCols(columns[t]).transpose().lazyProduct(CBJ_s.leftCols(columns[s]));
+      out.row[out.count] = block[t];
+      out.column[out.count] = block[s];
+      out.at[out.count] = next;
+      ++out.count;
+      next += columns[t] * columns[s];
+    }
+  }
+}
+
 void StencilJacobian::scatter_hessian(const Eigen::Matrix<double, 12, 12>& H_x, BlockHessian& H) const {
   StencilHessian blocks;
   block_hessians(H_x, blocks);

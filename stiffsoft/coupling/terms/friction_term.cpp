@@ -80,8 +80,10 @@ void FrictionTerm::add_hessian(const Configuration& c, BlockHessian& H) const {
   assemble_in_chunks<StencilHessian>(
       m_stencils.size(),
       [&](size_t k, StencilHessian& out) {
-        StencilJacobian(m_model, m_vertices[k])
-            .block_hessians(contact::friction_potential_hessian(m_stencils[k], displacement(c, k), m_mu, m_epsv_h, true), out);
+        // Rank ≤ 2: T is mapped through J before any 12×12 product is formed.
+        const contact::FrictionHessianFactors h =
+            contact::friction_hessian_factors(m_stencils[k], displacement(c, k), m_mu, m_epsv_h, true);
+        StencilJacobian(m_model, m_vertices[k]).low_rank_block_hessians(h.T, h.C, out);
       },
       [&](size_t, const StencilHessian& out) { out.add_to(H); });
 }
