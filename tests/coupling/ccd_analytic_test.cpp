@@ -5,9 +5,11 @@
 #include <Eigen/Core>
 #include <cfloat>
 #include <cstdio>
+#include <random>
 #include <stdexcept>
 
 #include <stiffsoft/coupling/ccd/ccd.hpp>
+#include <stiffsoft/coupling/ccd/additive_ccd.hpp>
 #include <stiffsoft/coupling/ccd/distance.hpp>
 
 namespace stiffsoft::ccd {
@@ -172,6 +174,63 @@ TEST(CcdAnalytic, IterationCapReportsCollisionAtSafeTime) {
   EXPECT_GT(toi, 0.0);
   settings.max_iterations = 1000000;
   EXPECT_EQ(point_triangle_toi(p0, t0, t1, t2, p1, t0, t1, t2, settings), settings.t_max);
+}
+
+TEST(CcdAnalytic, LowerBoundShortcutGivesTheSameTimesBitForBit) {
+  // point_triangle_toi / edge_edge_toi decide with a cheap lower bound of d₀ whether the first
+  // step reaches t_max; ACCD without it (a zero bound) must give the same time in every query:
+  // near-contact motions, both slow (most end in the shortcut) and fast (most do not).
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const auto point = [&](double scale) { return Vector3d(u(rng), u(rng), u(rng)) * scale; };
+  const auto no_bound = [](const detail::Stencil&) { return 0.0; };
+  int shortcut_candidates = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const double reach = k % 2 ? 1e-4 : 3e-3;  // motion of each vertex over the step
+    detail::Stencil x0, x1;
+    x0[0] = point(0.1);
+    x0[1] = point(0.1);
+    x0[2] = point(0.1);
+    x0[3] = point(0.1);
+    // Bring the second primitive within about 2e-3 of the first (a pile's near contacts).
+    const Vector3d shift = x0[1] - x0[2] + point(2e-3);
+    for (int i = 2; i < 4; ++i) x0[i] += shift;
+    for (int i = 0; i < 4; ++i) x1[i] = x0[i] + point(reach);
+    CcdSettings s;
+    s.t_max = k % 3 ? 1.0 : 0.5;
+    const double pt = point_triangle_toi(x0[0], x0[1], x0[2], x0[3], x1[0], x1[1], x1[2], x1[3], s);
+    const double pt_plain = detail::additive_ccd<1>(x0, x1, s, [](const detail::Stencil& x) {
+      return detail::point_triangle_distance_squared<double>(x[0], x[1], x[2], x[3]); }, no_bound);
+    const double ee = edge_edge_toi(x0[0], x0[1], x0[2], x0[3], x1[0], x1[1], x1[2], x1[3], s);
+    const double ee_plain = detail::additive_ccd<2>(x0, x1, s, [](const detail::Stencil& x) {
+      return detail::segment_segment_distance_squared<double>(x[0], x[1], x[2], x[3]); }, no_bound);
+    ASSERT_EQ(pt, pt_plain) << "query " << k;
+    ASSERT_EQ(ee, ee_plain) << "query " << k;
+    shortcut_candidates += (pt == s.t_max) + (ee == s.t_max);
+  }
+  EXPECT_GT(shortcut_candidates, 1000);  // the shortcut's case was exercised
+  // Head-on approaches whose first step ends anywhere in [0, 2] t_max: the shortcut must
+  // leave every time that ends before t_max alone.
+  const Vector3d n(0.1, 1, -0.2), t0(-1, 0, -1), t1(1, 0.2, -1), t2(0, -0.1, 1);
+  for (int k = 1; k <= 400; ++k) {
+    const double f = 0.01 * k;  // approach over the step, in units of the initial gap
+    const detail::Stencil pt0{Vector3d(0, 1e-3, 0), t0, t1, t2};
+    detail::Stencil pt1 = pt0;
+    pt1[0] -= f * 1e-3 * n.normalized();
+    const detail::Stencil ee0{Vector3d(-1, 1e-3, 0.1), Vector3d(1, 1e-3, -0.1), Vector3d(0.1, 0, -1), Vector3d(-0.1, 0, 1)};
+    detail::Stencil ee1 = ee0;
+    ee1[0].y() -= f * 1e-3;
+    ee1[1].y() -= f * 1e-3;
+    const CcdSettings s;
+    EXPECT_EQ(point_triangle_toi(pt0[0], pt0[1], pt0[2], pt0[3], pt1[0], pt1[1], pt1[2], pt1[3], s),
+              detail::additive_ccd<1>(pt0, pt1, s, [](const detail::Stencil& x) {
+                return detail::point_triangle_distance_squared<double>(x[0], x[1], x[2], x[3]); }, no_bound))
+        << "f = " << f;
+    EXPECT_EQ(edge_edge_toi(ee0[0], ee0[1], ee0[2], ee0[3], ee1[0], ee1[1], ee1[2], ee1[3], s),
+              detail::additive_ccd<2>(ee0, ee1, s, [](const detail::Stencil& x) {
+                return detail::segment_segment_distance_squared<double>(x[0], x[1], x[2], x[3]); }, no_bound))
+        << "f = " << f;
+  }
 }
 
 TEST(CcdAnalytic, InvalidSettingsThrow) {
