@@ -8,7 +8,11 @@
 ///    term's own projected Hessian): the ratio says how much the PSD projection (and friction's
 ///    revision) changes Newton's model along the direction it takes;
 ///  - the energy decrease of the admissible step α p (α the CCD bound) with the quadratic
-///    model's, ρ = ΔE / (α gᵀp + ½ α² pᵀHp): near 1 where the model holds over the step.
+///    model's, ρ = ΔE / (α gᵀp + ½ α² pᵀHp): near 1 where the model holds over the step;
+///  - the gradient at the step's end with the model's, ‖g(q + αp) − g − αHp‖ / ‖g‖, in all, per
+///    term and for the barrier stencils that entered d̂ during the step, and the slope of E
+///    along p there (0 at the line's minimum);
+///  - by barrier stencil kind, the share of the curvature along p that the projection adds.
 /// Every difference is taken at three step lengths (surface displacements of 1e-4, 1e-5 and
 /// 1e-6 d̂) and the smallest error reported. The probes leave the run's iterates unchanged:
 /// each Newton iteration continues from its own state. `newton_probe --help` lists the options.
@@ -58,12 +62,14 @@ Sample sample(const NewtonIterate& it, const Eigen::VectorXd& q) {
   return s;
 }
 
+/// Σ of the terms' values.
 double sum(const std::vector<double>& v) {
   double s = 0;
   for (double x : v) s += x;
   return s;
 }
 
+/// Σ of the terms' gradients.
 Eigen::VectorXd sum(const std::vector<Eigen::VectorXd>& v) {
   Eigen::VectorXd s = v.front();
   for (std::size_t k = 1; k < v.size(); ++k) s += v[k];
@@ -82,6 +88,7 @@ struct Differences {
   std::vector<Sample> plus, minus;
 };
 
+/// The samples of the terms at q ± ε v for the three step lengths.
 Differences differences(const NewtonIterate& it, const Eigen::VectorXd& v, double dhat) {
   const Eigen::MatrixX3d dx = it.model.surface_step(v);
   const double reach = dx.rows() ? dx.rowwise().norm().maxCoeff() : 0.0;  // surface displacement per unit of v
@@ -170,6 +177,7 @@ std::array<double, kKindCount> projection_excess(const BarrierTerm& barrier, con
   return excess;
 }
 
+/// Every comparison at one Newton direction; leaves the terms updated at the iterate.
 Row probe(const NewtonIterate& it, double dhat, double h, std::mt19937& rng) {
   const Eigen::VectorXd& q = it.c.q;
   const Eigen::VectorXd& p = it.p;
@@ -209,6 +217,19 @@ Row probe(const NewtonIterate& it, double dhat, double h, std::mt19937& rng) {
   const Eigen::VectorXd exact_Hp = hessian_times(along_p, -1);
   row.hessian_p = (Hp - exact_Hp).norm() / std::max(exact_Hp.norm(), 1e-300);
   row.curvature_ratio = p.dot(Hp) / p.dot(exact_Hp);
+  // Each term's own Hessian along p, with the terms updated at q again (the differences left
+  // them elsewhere).
+  for (EnergyTerm* t : it.terms) t->update(it.c);
+  std::vector<Eigen::VectorXd> term_Hp;
+  BlockHessian H_t(it.model.blocks);
+  for (int t = 0; t < nt; ++t) {
+    H_t.clear();
+    it.terms[t]->add_hessian(it.c, H_t);
+    term_Hp.push_back(H_t.multiply(p));
+    const double exact = p.dot(hessian_times(along_p, t));
+    const double model = p.dot(term_Hp.back());
+    row.term_curvature_ratio.push_back(exact != 0 ? model / exact : (model == 0 ? 1.0 : INFINITY));
+  }
   const Sample end = sample(it, q + it.alpha * p);
   const double g_norm = std::max(it.g.norm(), 1e-300);
   row.gradient_model = (sum(end.gradient) - sum(at.gradient) - it.alpha * Hp).norm() / g_norm;
@@ -225,17 +246,8 @@ Row probe(const NewtonIterate& it, double dhat, double h, std::mt19937& rng) {
                               g_new);
     row.new_contacts = g_new.norm() / g_norm;
   }
-  BlockHessian H_t(it.model.blocks);
-  for (int t = 0; t < nt; ++t) {
-    H_t.clear();
-    it.terms[t]->add_hessian(it.c, H_t);
-    const Eigen::VectorXd Htp = H_t.multiply(p);
-    const double exact = p.dot(hessian_times(along_p, t));
-    const double model = p.dot(Htp);
-    row.term_curvature_ratio.push_back(exact != 0 ? model / exact : (model == 0 ? 1.0 : INFINITY));
-    row.term_gradient_model.push_back((end.gradient[t] - at.gradient[t] - it.alpha * Htp).norm() / g_norm);
-  }
-
+  for (int t = 0; t < nt; ++t)
+    row.term_gradient_model.push_back((end.gradient[t] - at.gradient[t] - it.alpha * term_Hp[t]).norm() / g_norm);
 
   const double predicted = it.alpha * it.g.dot(p) + 0.5 * it.alpha * it.alpha * p.dot(Hp);
   const double actual = sum(end.value) - sum(at.value);
@@ -244,6 +256,7 @@ Row probe(const NewtonIterate& it, double dhat, double h, std::mt19937& rng) {
   return row;
 }
 
+/// The median (the upper one of an even count), NaN when empty.
 double median(std::vector<double> v) {
   if (v.empty()) return NAN;
   std::sort(v.begin(), v.end());
