@@ -145,6 +145,38 @@ TEST(SegmentDistanceLowerBound, NeverExceedsTheDistanceAndIsUsuallyWithinHalfOfI
   EXPECT_GT(tight, trials / 2);
 }
 
+TEST(LineDistanceLowerBound, NeverExceedsTheDistanceAndIsExactBetweenCrossingInteriors) {
+  // Random, nearly parallel (down to 1e-12 rad), parallel, collinear and zero-length segments:
+  // the lines' distance is at most the segments' (to rounding), and equal to it when the
+  // closest points lie inside both segments.
+  std::mt19937 rng(16);
+  int trials = 0, interior = 0, bounded = 0;
+  const auto check = [&](const Vector3d& a0, const Vector3d& a1, const Vector3d& b0, const Vector3d& b1) {
+    const double exact = segment_segment_squared_distance(a0, a1, b0, b1);
+    const double bound = line_line_squared_distance_lower_bound(a0, a1, b0, b1);
+    ASSERT_TRUE(std::isfinite(bound));
+    EXPECT_GE(bound, 0.0);
+    EXPECT_LE(bound, exact + 1e-13 * std::max(1.0, exact)) << "trial " << trials;
+    if (classify_edge_edge(a0, a1, b0, b1).kind == PrimitivePair::EdgeEdge && bound > 0) {
+      EXPECT_NEAR(bound, exact, 1e-10 * std::max(1.0, exact)) << "trial " << trials;
+      ++interior;
+    }
+    bounded += bound > 0;
+    ++trials;
+  };
+  for (int trial = 0; trial < 3000; ++trial)
+    check(random_point(rng, 1), random_point(rng, 1), random_point(rng, 1), random_point(rng, 1));
+  for (int trial = 0; trial < 1000; ++trial) {
+    const Vector3d a0 = random_point(rng, 1), a1 = random_point(rng, 1);
+    const double tilt = trial % 4 == 0 ? 0.0 : std::pow(10.0, -12.0 + 10.0 * (trial % 7) / 6.0);
+    const double stretch = trial % 5 == 0 ? 0.0 : 0.5 + (trial % 3);
+    const Vector3d b0 = a0 + (trial % 6 == 0 ? 0.3 * (a1 - a0) : random_point(rng, 1));  // some collinear
+    check(a0, a1, b0, b0 + stretch * (a1 - a0) + tilt * random_point(rng, 1));
+  }
+  EXPECT_GT(interior, 100);
+  EXPECT_GT(bounded, trials / 2);
+}
+
 TEST(PointTriangleDistanceLowerBound, NeverExceedsTheDistanceAndIsExactOverTheTriangle) {
   // Random, sliver, degenerate (collinear, a point) triangles and points in their plane: the
   // plane's distance is at most the exact squared distance (to rounding), and equal to it for

@@ -102,9 +102,12 @@ std::vector<ContactConstraint> build_constraints(const Model& model, const Eigen
     const auto [ea, eb] = candidates.edge_edge[k];
     const std::array<int, 4> ids{mesh.E(ea, 0), mesh.E(ea, 1), mesh.E(eb, 0), mesh.E(eb, 1)};
     const contact::Vector12d xs = gather(x, ids);
-    // Most candidates of resting piles are far: rejected by the cheap bound first, with a
-    // margin far above its rounding, so the set is the one classification alone gives.
-    if (contact::segment_segment_squared_distance_lower_bound(xs.segment<3>(0), xs.segment<3>(3), xs.segment<3>(6),
+    // Most candidates of resting piles are far: rejected by the cheap bounds first (the lines'
+    // distance, then the segments' distances to each other's lines), with a margin far above
+    // their rounding, so the set is the one classification alone gives.
+    if (contact::line_line_squared_distance_lower_bound(xs.segment<3>(0), xs.segment<3>(3), xs.segment<3>(6),
+                                                        xs.segment<3>(9)) > (1 + 1e-6) * dhat2 ||
+        contact::segment_segment_squared_distance_lower_bound(xs.segment<3>(0), xs.segment<3>(3), xs.segment<3>(6),
                                                               xs.segment<3>(9)) > (1 + 1e-6) * dhat2)
       return;
     const contact::Classified c = contact::classify_edge_edge_stencil(xs);
