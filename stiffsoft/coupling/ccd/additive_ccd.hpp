@@ -25,15 +25,15 @@ inline constexpr double kRoundingAllowance = 0x1p-40;
 
 /// Additive CCD over the straight-line motion x0 → x1 of one stencil whose first `n_a` vertices
 /// form primitive A and the rest primitive B (n_a = 1: point–triangle, n_a = 2: edge–edge).
-/// `distance_squared(x)` is the squared distance between the primitives of stencil x, and
-/// `lower_bound_squared(x)` a cheaper lower bound of it (0 allowed) that decides first whether
-/// the first step already reaches t_max (most queries of a resting pile).
+/// `distance_squared(x)` is the squared distance between the primitives of stencil x, and each
+/// of `lower_bounds_squared(x)` a cheaper lower bound of it (0 allowed); tried in order, the
+/// first whose step already reaches t_max decides (most queries of a resting pile).
 /// Returns settings.t_max when the motion stays farther than ξ in [0, t_max], else a time
 /// toi ∈ [0, t_max) at which the primitives are at least ξ + s·(d₀ − ξ) apart (d₀ the initial
 /// distance; toi = 0 when d₀ ≤ ξ already).
-template <int n_a, typename DistanceSquared, typename LowerBoundSquared>
+template <int n_a, typename DistanceSquared, typename... LowerBoundsSquared>
 double additive_ccd(const Stencil& x0, const Stencil& x1, const CcdSettings& settings,
-                    DistanceSquared&& distance_squared, LowerBoundSquared&& lower_bound_squared) {
+                    DistanceSquared&& distance_squared, LowerBoundsSquared&&... lower_bounds_squared) {
   // Scale of the query for the rounding allowance, and the AABB filter: the swept primitive
   // A (resp. B) stays inside the box of its vertices at t = 0 and t = 1, so boxes separated by
   // more than ξ on one axis prove the motion free. Comparisons of the stored coordinates are exact.
@@ -77,9 +77,12 @@ double additive_ccd(const Stencil& x0, const Stencil& x1, const CcdSettings& set
 
   // The first step from a lower bound of d₀, in the same operations as from d₀ below: when it
   // reaches t_max, so does d₀'s (each operation is monotone), and the result is the same. The
-  // margin lies far above the bound's rounding.
-  const double d_low = std::sqrt(lower_bound_squared(x0) / (1 + 1e-6));
-  if (d_low > xi && (1 - settings.tolerance) * (d_low - xi) / l_p >= settings.t_max) {
+  // margin lies far above the bounds' rounding.
+  const auto first_step_reaches_t_max = [&](auto&& lower_bound_squared) {
+    const double d_low = std::sqrt(lower_bound_squared(x0) / (1 + 1e-6));
+    return d_low > xi && (1 - settings.tolerance) * (d_low - xi) / l_p >= settings.t_max;
+  };
+  if ((first_step_reaches_t_max(lower_bounds_squared) || ...)) {
     return settings.t_max;
   }
 

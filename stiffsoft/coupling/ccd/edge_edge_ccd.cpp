@@ -17,6 +17,7 @@ double edge_edge_toi(const Eigen::Vector3d& ea0_t0, const Eigen::Vector3d& ea1_t
       [](const detail::Stencil& x) {
         return detail::segment_segment_distance_squared<double>(x[0], x[1], x[2], x[3]);
       },
+      [](const detail::Stencil& x) { return contact::line_line_squared_distance_lower_bound(x[0], x[1], x[2], x[3]); },
       [](const detail::Stencil& x) { return contact::segment_segment_squared_distance_lower_bound(x[0], x[1], x[2], x[3]); });
 }
 
