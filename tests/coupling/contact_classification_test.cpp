@@ -116,6 +116,24 @@ TEST(ClassifyEdgeEdge, NearlyParallelAndDegenerateSegmentsGiveTheExactDistance) 
   }
 }
 
+/// Calls check(a0, a1, b0, b1) on the segment pairs the lower-bound tests share: 3000 random
+/// ones, 1000 nearly parallel (tilts down to 1e-12), parallel, collinear and zero-length ones,
+/// a crossing pair and two points.
+template <class Check>
+void for_bound_test_segments(std::mt19937& rng, const Check& check) {
+  for (int trial = 0; trial < 3000; ++trial)
+    check(random_point(rng, 1), random_point(rng, 1), random_point(rng, 1), random_point(rng, 1));
+  for (int trial = 0; trial < 1000; ++trial) {
+    const Vector3d a0 = random_point(rng, 1), a1 = random_point(rng, 1);
+    const double tilt = trial % 4 == 0 ? 0.0 : std::pow(10.0, -12.0 + 10.0 * (trial % 7) / 6.0);
+    const double stretch = trial % 5 == 0 ? 0.0 : 0.5 + (trial % 3);
+    const Vector3d b0 = a0 + (trial % 6 == 0 ? 0.3 * (a1 - a0) : random_point(rng, 1));  // some collinear
+    check(a0, a1, b0, b0 + stretch * (a1 - a0) + tilt * random_point(rng, 1));
+  }
+  check(Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0.5, -1, 1e-3), Vector3d(0.5, 1, 1e-3));  // crossing
+  check(Vector3d(0, 0, 0), Vector3d(0, 0, 0), Vector3d(1, 1, 1), Vector3d(1, 1, 1));              // two points
+}
+
 TEST(SegmentDistanceLowerBound, NeverExceedsTheDistanceAndIsUsuallyWithinHalfOfIt) {
   // Random, nearly parallel, collinear, crossing and zero-length segments: the bound is at most
   // the exact squared distance (to rounding).
@@ -130,17 +148,7 @@ TEST(SegmentDistanceLowerBound, NeverExceedsTheDistanceAndIsUsuallyWithinHalfOfI
     tight += bound >= 0.5 * exact;
     ++trials;
   };
-  for (int trial = 0; trial < 3000; ++trial)
-    check(random_point(rng, 1), random_point(rng, 1), random_point(rng, 1), random_point(rng, 1));
-  for (int trial = 0; trial < 1000; ++trial) {
-    const Vector3d a0 = random_point(rng, 1), a1 = random_point(rng, 1);
-    const double tilt = trial % 4 == 0 ? 0.0 : std::pow(10.0, -12.0 + 10.0 * (trial % 7) / 6.0);
-    const double stretch = trial % 5 == 0 ? 0.0 : 0.5 + (trial % 3);
-    const Vector3d b0 = a0 + (trial % 6 == 0 ? 0.3 * (a1 - a0) : random_point(rng, 1));  // some collinear
-    check(a0, a1, b0, b0 + stretch * (a1 - a0) + tilt * random_point(rng, 1));
-  }
-  check(Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0.5, -1, 1e-3), Vector3d(0.5, 1, 1e-3));  // crossing
-  check(Vector3d(0, 0, 0), Vector3d(0, 0, 0), Vector3d(1, 1, 1), Vector3d(1, 1, 1));              // two points
+  for_bound_test_segments(rng, check);
   // A useful bound, not just 0: most pairs are bounded to within half their distance.
   EXPECT_GT(tight, trials / 2);
 }
@@ -164,15 +172,7 @@ TEST(LineDistanceLowerBound, NeverExceedsTheDistanceAndIsExactBetweenCrossingInt
     bounded += bound > 0;
     ++trials;
   };
-  for (int trial = 0; trial < 3000; ++trial)
-    check(random_point(rng, 1), random_point(rng, 1), random_point(rng, 1), random_point(rng, 1));
-  for (int trial = 0; trial < 1000; ++trial) {
-    const Vector3d a0 = random_point(rng, 1), a1 = random_point(rng, 1);
-    const double tilt = trial % 4 == 0 ? 0.0 : std::pow(10.0, -12.0 + 10.0 * (trial % 7) / 6.0);
-    const double stretch = trial % 5 == 0 ? 0.0 : 0.5 + (trial % 3);
-    const Vector3d b0 = a0 + (trial % 6 == 0 ? 0.3 * (a1 - a0) : random_point(rng, 1));  // some collinear
-    check(a0, a1, b0, b0 + stretch * (a1 - a0) + tilt * random_point(rng, 1));
-  }
+  for_bound_test_segments(rng, check);
   EXPECT_GT(interior, 100);
   EXPECT_GT(bounded, trials / 2);
 }
