@@ -157,33 +157,34 @@ inline double segment_segment_squared_distance_lower_bound(const Eigen::Vector3d
   return bound;
 }
 
-/// A lower bound of the squared distance between the segments (ea0, ea1) and (eb0, eb1), m²:
-/// the squared distance between their lines; 0 for edges within about 1e-4 rad of parallel
-/// (or of zero length), whose computed common normal could tilt enough to overstate it. A
-/// dozen products and no square root: the first test for the edge pairs of a pile, most of
-/// which it puts beyond d̂ (87 % of full's candidates).
-inline double line_line_squared_distance_lower_bound(const Eigen::Vector3d& ea0, const Eigen::Vector3d& ea1,
-                                                     const Eigen::Vector3d& eb0, const Eigen::Vector3d& eb1) {
-  const Eigen::Vector3d a = ea1 - ea0, b = eb1 - eb0;
+/// Squared distance from p to the plane through o spanned by a and b, m²; 0 when a and b are
+/// within about 1e-4 rad of parallel (or one is zero), where the computed normal a × b could
+/// tilt enough to overstate it. The shared core of the two plane bounds below.
+inline double plane_squared_distance_bound(const Eigen::Vector3d& p, const Eigen::Vector3d& o, const Eigen::Vector3d& a,
+                                           const Eigen::Vector3d& b) {
   const Eigen::Vector3d n = a.cross(b);
   const double nn = n.squaredNorm();
   if (!(nn > 1e-8 * a.squaredNorm() * b.squaredNorm())) return 0;
-  const double h = n.dot(eb0 - ea0);
+  const double h = n.dot(p - o);
   return h * h / nn;
 }
 
+/// A lower bound of the squared distance between the segments (ea0, ea1) and (eb0, eb1), m²:
+/// the squared distance between their lines (eb0's distance to the plane through ea0 spanned
+/// by both directions); 0 for edges within about 1e-4 rad of parallel. A dozen products and
+/// no square root: the first test for the edge pairs of a pile, most of which it puts beyond
+/// d̂ (87 % of full's candidates).
+inline double line_line_squared_distance_lower_bound(const Eigen::Vector3d& ea0, const Eigen::Vector3d& ea1,
+                                                     const Eigen::Vector3d& eb0, const Eigen::Vector3d& eb1) {
+  return plane_squared_distance_bound(eb0, ea0, ea1 - ea0, eb1 - eb0);
+}
+
 /// A lower bound on the squared distance from p to the triangle (t0, t1, t2), m²: its squared
-/// distance to the triangle's plane; 0 for a triangle with an angle below about 1e-4 rad,
-/// whose computed normal could tilt enough to overstate it. A few products against
-/// classify_point_triangle's work; a pair it puts beyond d̂ is no contact.
+/// distance to the triangle's plane; 0 for a triangle with an angle below about 1e-4 rad. A
+/// few products against classify_point_triangle's work; a pair it puts beyond d̂ is no contact.
 inline double point_triangle_squared_distance_lower_bound(const Eigen::Vector3d& p, const Eigen::Vector3d& t0,
                                                           const Eigen::Vector3d& t1, const Eigen::Vector3d& t2) {
-  const Eigen::Vector3d a = t1 - t0, b = t2 - t0;
-  const Eigen::Vector3d n = a.cross(b);
-  const double nn = n.squaredNorm();
-  if (!(nn > 1e-8 * a.squaredNorm() * b.squaredNorm())) return 0;
-  const double h = n.dot(p - t0);
-  return h * h / nn;
+  return plane_squared_distance_bound(p, t0, t1 - t0, t2 - t0);
 }
 
 /// Exact squared distance between point p and the closed triangle (t0, t1, t2), m², any
