@@ -12,6 +12,28 @@ constexpr int kDof[4][3] = {{0, 1, 2}, {3, 6, 9}, {4, 7, 10}, {5, 8, 11}};
 
 /// Number of weights of a block with `columns` DOFs: 4 for an affine body, 1 for a soft node.
 int weights(int columns) { return columns == 12 ? 4 : 1; }
+
+/// Lays out the stencil's blocks in `out`: for every slot pair (t, s) with block[t] ≤ block[s],
+/// fill(t, s, values) writes the columns[t] × columns[s] block J_tᵀ H J_s (column-major, q's
+/// order) at `values`.
+template <class Fill>
+void for_block_pairs(const StencilJacobian& J, StencilHessian& out, Fill&& fill) {
+  out.count = 0;
+  int next = 0;
+  for (int s = 0; s < J.slots; ++s) {
+    for (int t = 0; t < J.slots; ++t) {
+      if (J.block[t] > J.block[s]) continue;
+      if (next + J.columns[t] * J.columns[s] > StencilHessian::kCapacity)
+        throw std::logic_error("StencilJacobian: a stencil spans more DOFs than two affine bodies");
+      fill(t, s, out.values.data() + next);
+      out.row[out.count] = J.block[t];
+      out.column[out.count] = J.block[s];
+      out.at[out.count] = next;
+      ++out.count;
+      next += J.columns[t] * J.columns[s];
+    }
+  }
+}
 }  // namespace
 
 StencilJacobian::StencilJacobian(const Model& model, const std::array<int, 4>& vertices) {
@@ -44,40 +66,27 @@ void StencilJacobian::scatter_gradient(const Eigen::Matrix<double, 12, 1>& g_x, 
 }
 
 void StencilJacobian::block_hessians(const Eigen::Matrix<double, 12, 12>& H_x, StencilHessian& out) const {
-  out.count = 0;
-  int next = 0;
-  for (int s = 0; s < slots; ++s) {
-    for (int t = 0; t < slots; ++t) {
-      if (block[t] > block[s]) continue;
-      if (next + columns[t] * columns[s] > StencilHessian::kCapacity)
-        throw std::logic_error("StencilJacobian: a stencil spans more DOFs than two affine bodies");
-      const int nk = weights(columns[t]), nl = weights(columns[s]);
-      // J_tᵀ H J_s = Σ over vertex pairs (a in t, b in s) of w_a w_bᵀ ⊗ H_ab, as K with rows
-      // 3k + i and columns 3l + j: first G_b = Σ_a w_a ⊗ H_ab (12×3), then K += w_bᵀ ⊗ G_b.
-      Eigen::Matrix<double, 12, 12> K = Eigen::Matrix<double, 12, 12>::Zero();
-      for (int b = 0; b < 4; ++b) {
-        if (slot_of[b] != s) continue;
-        Eigen::Matrix<double, 12, 3> G = Eigen::Matrix<double, 12, 3>::Zero();
-        for (int a = 0; a < 4; ++a) {
-          if (slot_of[a] != t) continue;
-          const Eigen::Matrix3d H_ab = H_x.block<3, 3>(3 * a, 3 * b);
-          for (int k = 0; k < nk; ++k) G.block<3, 3>(3 * k, 0) += w[a][k] * H_ab;
-        }
-        for (int l = 0; l < nl; ++l) K.middleCols<3>(3 * l) += w[b][l] * G;
+  for_block_pairs(*this, out, [&](int t, int s, double* block_ts) {
+    const int nk = weights(columns[t]), nl = weights(columns[s]);
+    // J_tᵀ H J_s = Σ over vertex pairs (a in t, b in s) of w_a w_bᵀ ⊗ H_ab, as K with rows
+    // 3k + i and columns 3l + j: first G_b = Σ_a w_a ⊗ H_ab (12×3), then K += w_bᵀ ⊗ G_b.
+    Eigen::Matrix<double, 12, 12> K = Eigen::Matrix<double, 12, 12>::Zero();
+    for (int b = 0; b < 4; ++b) {
+      if (slot_of[b] != s) continue;
+      Eigen::Matrix<double, 12, 3> G = Eigen::Matrix<double, 12, 3>::Zero();
+      for (int a = 0; a < 4; ++a) {
+        if (slot_of[a] != t) continue;
+        const Eigen::Matrix3d H_ab = H_x.block<3, 3>(3 * a, 3 * b);
+        for (int k = 0; k < nk; ++k) G.block<3, 3>(3 * k, 0) += w[a][k] * H_ab;
       }
-      // K in q's order.
-      double* block_ts = out.values.data() + next;
-      for (int l = 0; l < nl; ++l)
-        for (int j = 0; j < 3; ++j)
-          for (int k = 0; k < nk; ++k)
-            for (int i = 0; i < 3; ++i) block_ts[kDof[l][j] * columns[t] + kDof[k][i]] = K(3 * k + i, 3 * l + j);
-      out.row[out.count] = block[t];
-      out.column[out.count] = block[s];
-      out.at[out.count] = next;
-      ++out.count;
-      next += columns[t] * columns[s];
+      for (int l = 0; l < nl; ++l) K.middleCols<3>(3 * l) += w[b][l] * G;
     }
-  }
+    // K in q's order.
+    for (int l = 0; l < nl; ++l)
+      for (int j = 0; j < 3; ++j)
+        for (int k = 0; k < nk; ++k)
+          for (int i = 0; i < 3; ++i) block_ts[kDof[l][j] * columns[t] + kDof[k][i]] = K(3 * k + i, 3 * l + j);
+  });
 }
 
 void StencilJacobian::low_rank_block_hessians(const Eigen::Matrix<double, 2, 12>& B, const Eigen::Matrix2d& C,
@@ -91,23 +100,12 @@ void StencilJacobian::low_rank_block_hessians(const Eigen::Matrix<double, 2, 12>
     for (int k = 0; k < weights(columns[s]); ++k)
       for (int i = 0; i < 3; ++i) BJ[s].col(kDof[k][i]) += w[a][k] * B.col(3 * a + i);
   }
-  out.count = 0;
-  int next = 0;
-  for (int s = 0; s < slots; ++s) {
-    const Eigen::Matrix<double, 2, 12> CBJ_s = C * BJ[s];
-    for (int t = 0; t < slots; ++t) {
-      if (block[t] > block[s]) continue;
-      if (next + columns[t] * columns[s] > StencilHessian::kCapacity)
-        throw std::logic_error("StencilJacobian: a stencil spans more DOFs than two affine bodies");
-      Eigen::Map<Eigen::MatrixXd>(out.values.data() + next, columns[t], columns[s]) =
-          BJ[t].leftCols(columns[t]).transpose().lazyProduct(CBJ_s.leftCols(columns[s]));
-      out.row[out.count] = block[t];
-      out.column[out.count] = block[s];
-      out.at[out.count] = next;
-      ++out.count;
-      next += columns[t] * columns[s];
-    }
-  }
+  std::array<Eigen::Matrix<double, 2, 12>, 4> CBJ;  // C (B J)_s
+  for (int s = 0; s < slots; ++s) CBJ[s] = C * BJ[s];
+  for_block_pairs(*this, out, [&](int t, int s, double* block_ts) {
+    Eigen::Map<Eigen::MatrixXd>(block_ts, columns[t], columns[s]) =
+        BJ[t].leftCols(columns[t]).transpose().lazyProduct(CBJ[s].leftCols(columns[s]));
+  });
 }
 
 void StencilJacobian::scatter_hessian(const Eigen::Matrix<double, 12, 12>& H_x, BlockHessian& H) const {
