@@ -230,13 +230,13 @@ Row probe(const NewtonIterate& it, double dhat, double h, std::mt19937& rng) {
     const double model = p.dot(term_Hp.back());
     row.term_curvature_ratio.push_back(exact != 0 ? model / exact : (model == 0 ? 1.0 : INFINITY));
   }
-  const Sample end = sample(it, q + it.alpha * p);
+  const Eigen::VectorXd q_end = q + it.alpha * p;
+  const Sample end = sample(it, q_end);
   const double g_norm = std::max(it.g.norm(), 1e-300);
   row.gradient_model = (sum(end.gradient) - sum(at.gradient) - it.alpha * Hp).norm() / g_norm;
   row.slope_ratio = sum(end.gradient).dot(p) / it.g.dot(p);
   if (barrier) {
     Eigen::VectorXd g_new = Eigen::VectorXd::Zero(q.size());
-    const Eigen::VectorXd q_end = q + it.alpha * p;
     const Eigen::MatrixX3d x_end = it.model.surface(q_end);
     for (const ContactConstraint& k : barrier->constraints())  // updated at the step's end by sample()
       if (!active.count(k.vertices))
