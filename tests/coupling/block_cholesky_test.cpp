@@ -1,7 +1,8 @@
 /// Block Cholesky (block_cholesky.hpp): solutions against a dense factorisation for affine-body
 /// (12), soft-node (3) and mixed blocks, reuse of the analysis, refusal of an indefinite matrix,
-/// the fill its ordering keeps, the same factor bit for bit on one and two threads, and a new
-/// factorisation that recomputes only the columns a change reaches.
+/// the fill its ordering keeps, the same factor bit for bit on one and two threads, a new
+/// factorisation that recomputes only the columns a change reaches, and blocks read in place
+/// (BlockUpper) factorised as their compressed copy is.
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -12,6 +13,7 @@
 
 #include <stiffsoft/coupling/linear_solver/block_cholesky.hpp>
 #include <stiffsoft/coupling/linear_solver/block_cholesky_solver.hpp>
+#include <stiffsoft/coupling/linear_solver/cholmod_solver.hpp>
 
 namespace stiffsoft {
 namespace {
@@ -178,6 +180,55 @@ TEST(BlockCholesky, RejectsBlocksThatDoNotCoverTheMatrix) {
   const Eigen::SparseMatrix<double> A = spd_upper({12, 12}, {}, 8);
   BlockCholesky factor;
   EXPECT_THROW(factor.analyze(A, {12, 3}), std::invalid_argument);
+}
+
+TEST(BlockCholesky, FactorisesBlocksInPlaceAsItFactorisesTheirCompressedCopy) {
+  const std::vector<int> sizes{12, 3, 12, 12, 3, 3, 12, 3};
+  const Eigen::SparseMatrix<double> A = spd_upper(sizes, {{0, 1}, {0, 3}, {1, 4}, {2, 6}, {3, 7}, {5, 6}}, 11);
+  const GatheredBlocks g = gather_blocks(A, sizes);
+  const double shift = 0.75;
+  Eigen::SparseMatrix<double> shifted = A;
+  for (int r = 0; r < A.rows(); ++r) shifted.coeffRef(r, r) += shift;
+  EXPECT_EQ(Eigen::MatrixXd(g.blocks.compressed()), Eigen::MatrixXd(A));
+  EXPECT_EQ(Eigen::MatrixXd(g.blocks.compressed(shift)), Eigen::MatrixXd(shifted));
+  EXPECT_EQ(g.blocks.upper_nonzeros(), long(A.nonZeros()));
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(A.rows(), -2, 1);
+  const Eigen::VectorXd Ab = A.selfadjointView<Eigen::Upper>() * b;
+  EXPECT_LE((g.blocks.multiply(b) - Ab).norm(), 1e-14 * Ab.norm());
+
+  BlockCholesky from_csc, from_blocks;
+  from_csc.analyze(shifted, sizes);
+  ASSERT_TRUE(from_csc.factorize(shifted));
+  from_blocks.analyze(g.blocks);
+  ASSERT_TRUE(from_blocks.factorize(g.blocks));
+  ASSERT_TRUE(from_blocks.factorize(g.blocks, shift));  // a new shift: every column again
+  EXPECT_EQ(from_blocks.refactored_columns(), sizes.size());
+  EXPECT_EQ(from_blocks.solve(b), from_csc.solve(b));  // bit for bit
+  const Eigen::VectorXd shifted_b = shifted.selfadjointView<Eigen::Upper>() * b;
+  EXPECT_LE((from_blocks.multiply(b) - shifted_b).norm(), 1e-14 * shifted_b.norm());
+
+  // Behind the LinearSolver interface: the block backend reads the blocks, CHOLMOD their copy.
+  BlockCholeskySolver block_solver, csc_solver;
+  block_solver.analyze_blocks(g.blocks);
+  ASSERT_TRUE(block_solver.factorize_blocks(g.blocks, shift));
+  csc_solver.set_block_sizes(sizes);
+  csc_solver.analyze_pattern(shifted);
+  ASSERT_TRUE(csc_solver.factorize(shifted));
+  EXPECT_EQ(block_solver.solve(b), csc_solver.solve(b));
+  CholmodSolver cholmod_blocks, cholmod_csc;
+  cholmod_blocks.analyze_blocks(g.blocks);
+  ASSERT_TRUE(cholmod_blocks.factorize_blocks(g.blocks, shift));
+  cholmod_csc.analyze_pattern(shifted);
+  ASSERT_TRUE(cholmod_csc.factorize(shifted));
+  EXPECT_EQ(cholmod_blocks.solve(b), cholmod_csc.solve(b));
+
+  // Blocks of another pattern, or below the diagonal, are refused.
+  const GatheredBlocks other = gather_blocks(spd_upper(sizes, {{0, 2}}, 12), sizes);
+  EXPECT_THROW(from_blocks.factorize(other.blocks), std::invalid_argument);
+  BlockUpper below = g.blocks;
+  below.rows[0] = 1;  // column 0 claims block row 1
+  BlockCholesky refuses;
+  EXPECT_THROW(refuses.analyze(below), std::invalid_argument);
 }
 
 }  // namespace

@@ -15,17 +15,24 @@ AutoSolver::AutoSolver() = default;
 AutoSolver::~AutoSolver() = default;
 
 void AutoSolver::analyze_pattern(const Eigen::SparseMatrix<double>& upper) {
-  const long nonzeros = long(upper.nonZeros());
+  choose(long(upper.nonZeros()), int(upper.rows()), [&](LinearSolver& s) { s.analyze_pattern(upper); });
+}
+
+void AutoSolver::analyze_blocks(const BlockUpper& H) {
+  choose(H.upper_nonzeros(), H.num_dofs(), [&](LinearSolver& s) { s.analyze_blocks(H); });
+}
+
+void AutoSolver::choose(long nonzeros, int rows, const std::function<void(LinearSolver&)>& analyse) {
   const bool redecide = !m_backend || std::abs(nonzeros - m_decided_nonzeros) >
                                           kAutoRedecideChange * double(m_decided_nonzeros);
   if (!redecide) {
-    m_backend->analyze_pattern(upper);
+    analyse(*m_backend);
     return;
   }
   m_decided_nonzeros = nonzeros;
-  if (upper.rows() < kAutoKrylovRows) {
+  if (rows < kAutoKrylovRows) {
     const bool affine_bodies_only =
-        !m_block_sizes.empty() && std::accumulate(m_block_sizes.begin(), m_block_sizes.end(), 0) == upper.rows() &&
+        !m_block_sizes.empty() && std::accumulate(m_block_sizes.begin(), m_block_sizes.end(), 0) == rows &&
         std::all_of(m_block_sizes.begin(), m_block_sizes.end(), [](int s) { return s == 12; });
     std::unique_ptr<LinearSolver> direct;
     double flops = 0, bound = kAutoCholmodFlops;
@@ -33,12 +40,12 @@ void AutoSolver::analyze_pattern(const Eigen::SparseMatrix<double>& upper) {
       bound = kAutoBlockCholeskyFlops;
       auto blocks = std::make_unique<BlockCholeskySolver>();
       blocks->set_block_sizes(m_block_sizes);
-      blocks->analyze_pattern(upper);
+      analyse(*blocks);
       flops = blocks->factor_flops();
       direct = std::move(blocks);
     } else {
       auto cholmod = std::make_unique<CholmodSolver>();
-      cholmod->analyze_pattern(upper);
+      analyse(*cholmod);
       flops = cholmod->factor_flops();
       direct = std::move(cholmod);
     }
@@ -54,12 +61,19 @@ void AutoSolver::analyze_pattern(const Eigen::SparseMatrix<double>& upper) {
     if (m_eta > 0) m_backend->set_relative_tolerance(m_eta);
     if (!m_block_sizes.empty()) m_backend->set_block_sizes(m_block_sizes);
   }
-  m_backend->analyze_pattern(upper);
+  analyse(*m_backend);
 }
 
 bool AutoSolver::factorize(const Eigen::SparseMatrix<double>& upper) {
   if (!m_backend) analyze_pattern(upper);
   const bool ok = m_backend->factorize(upper);
+  m_report = m_backend->last_report();
+  return ok;
+}
+
+bool AutoSolver::factorize_blocks(const BlockUpper& H, double shift) {
+  if (!m_backend) analyze_blocks(H);
+  const bool ok = m_backend->factorize_blocks(H, shift);
   m_report = m_backend->last_report();
   return ok;
 }

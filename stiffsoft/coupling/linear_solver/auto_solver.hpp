@@ -3,6 +3,7 @@
 /// for piles of affine bodies, CHOLMOD otherwise), PETSc's default Krylov method (CG with
 /// ICC(0)) when it is not, from the factorisation's own prediction of its cost.
 
+#include <functional>
 #include <memory>
 
 #include <stiffsoft/coupling/linear_solver/linear_solver.hpp>
@@ -51,6 +52,10 @@ class AutoSolver final : public LinearSolver {
   void analyze_pattern(const Eigen::SparseMatrix<double>& upper) override;
   /// See LinearSolver.
   bool factorize(const Eigen::SparseMatrix<double>& upper) override;
+  /// Chooses as analyze_pattern() does; the chosen backend reads the blocks its own way.
+  void analyze_blocks(const BlockUpper& H) override;
+  /// See LinearSolver.
+  bool factorize_blocks(const BlockUpper& H, double shift) override;
   /// See LinearSolver.
   Eigen::VectorXd solve(const Eigen::VectorXd& b) override;
   /// "auto→" followed by the chosen backend's name, e.g. "auto→cholmod".
@@ -63,6 +68,10 @@ class AutoSolver final : public LinearSolver {
   void set_block_sizes(const std::vector<int>& sizes) override;
 
  private:
+  /// The decision of analyze_pattern() for a matrix of `rows` rows and `nonzeros` stored entries
+  /// of its upper triangle; `analyse` has a backend analyse the matrix.
+  void choose(long nonzeros, int rows, const std::function<void(LinearSolver&)>& analyse);
+
   std::unique_ptr<LinearSolver> m_backend;
   bool m_krylov = false;
   long m_decided_nonzeros = 0;  // stored entries at the last decision

@@ -50,22 +50,17 @@ using Block = Eigen::Map<Eigen::Matrix<double, S, S>>;
 template <int S>
 using Segment = Eigen::Map<Eigen::Matrix<double, S, 1>>;
 
-/// The graph of the DOF blocks: adjacent[I] holds every block J ≠ I that `upper` couples to I.
-std::vector<std::vector<int>> block_graph(const Eigen::SparseMatrix<double>& upper, const std::vector<int>& offsets,
-                                          const std::vector<int>& block_of) {
-  const int nb = int(offsets.size()) - 1;
-  std::vector<std::vector<int>> adjacent(nb);
-  std::vector<int> mark(nb, -1);
-  for (int J = 0; J < nb; ++J)
-    for (int c = offsets[J]; c < offsets[J + 1]; ++c)
-      for (Eigen::SparseMatrix<double>::InnerIterator it(upper, c); it; ++it) {
-        if (it.row() > c) throw std::invalid_argument("BlockCholesky: an entry below the diagonal");
-        const int I = block_of[it.row()];
-        if (I == J || mark[I] == J) continue;
-        mark[I] = J;
-        adjacent[I].push_back(J);
-        adjacent[J].push_back(I);
-      }
+/// The graph of the DOF blocks: adjacent[I] holds every block J ≠ I that H couples to I.
+std::vector<std::vector<int>> block_graph(const BlockUpper& H) {
+  std::vector<std::vector<int>> adjacent(H.num_blocks());
+  for (int J = 0; J < H.num_blocks(); ++J)
+    for (int k = H.column_starts[J]; k < H.column_starts[J + 1]; ++k) {
+      const int I = H.rows[k];
+      if (I > J) throw std::invalid_argument("BlockCholesky: a block below the diagonal");
+      if (I == J) continue;
+      adjacent[I].push_back(J);
+      adjacent[J].push_back(I);
+    }
   return adjacent;
 }
 
@@ -118,16 +113,15 @@ Elimination eliminate(const std::vector<std::vector<int>>& adjacent, const std::
 }  // namespace
 
 void BlockCholesky::analyze(const Eigen::SparseMatrix<double>& upper, const std::vector<int>& sizes) {
-  const int n = int(upper.rows());
-  std::vector<int> offsets{0};
-  for (int s : sizes) offsets.push_back(offsets.back() + s);
-  if (upper.cols() != n || offsets.back() != n)
-    throw std::invalid_argument("BlockCholesky: DOF blocks of " + std::to_string(offsets.back()) +
-                                " DOFs for a " + std::to_string(n) + " × " + std::to_string(upper.cols()) + " matrix");
-  const int nb = int(sizes.size());
-  std::vector<int> block_of(n);
-  for (int b = 0; b < nb; ++b) std::fill(block_of.begin() + offsets[b], block_of.begin() + offsets[b + 1], b);
-  const std::vector<std::vector<int>> adjacent = block_graph(upper, offsets, block_of);
+  m_gathered = gather_blocks(upper, sizes);
+  analyze(m_gathered.blocks);
+}
+
+void BlockCholesky::analyze(const BlockUpper& H) {
+  const int nb = H.num_blocks();
+  std::vector<int> sizes(nb);
+  for (int b = 0; b < nb; ++b) sizes[b] = H.size(b);
+  const std::vector<std::vector<int>> adjacent = block_graph(H);
   const std::vector<int> order = minimum_degree_order(adjacent);
   std::vector<int> position(nb);
   for (int k = 0; k < nb; ++k) position[order[k]] = k;
@@ -140,7 +134,7 @@ void BlockCholesky::analyze(const Eigen::SparseMatrix<double>& upper, const std:
   m_flops = m_nonzeros = 0;
   for (int j = 0; j < nb; ++j) {
     const int b = order[j], s = sizes[b];
-    m_columns[j] = {s, offsets[b], pool};
+    m_columns[j] = {s, H.offsets[b], pool};
     pool += std::size_t(s) * s;
     m_nonzeros += 0.5 * s * (s + 1);
     m_flops += s * double(s) * s / 3;
@@ -182,41 +176,29 @@ void BlockCholesky::analyze(const Eigen::SparseMatrix<double>& upper, const std:
   std::vector<int> next(m_level_offsets.begin(), m_level_offsets.end() - 1);
   for (int j = 0; j < nb; ++j) m_by_level[next[height[j]]++] = j;
 
-  // Where each stored entry of `upper` goes: the lower triangle of a diagonal block, or the
-  // block of L below the diagonal that holds it (transposed when its block row comes first).
-  // A column's entries run through its blocks in order, so each block is looked up once.
-  m_target.resize(upper.nonZeros());
-  m_target_column.resize(upper.nonZeros());
-  m_input.clear();
-  m_outer.assign(upper.outerIndexPtr(), upper.outerIndexPtr() + n + 1);
-  m_inner.assign(upper.innerIndexPtr(), upper.innerIndexPtr() + upper.nonZeros());
-  std::int64_t k = 0;
+  // Where each stored block of H goes, and where its numbers are kept between factorisations.
   const auto entry_at = [&](int row, int column) {
     const auto begin = m_entries.begin() + m_column_offsets[column], end = m_entries.begin() + m_column_offsets[column + 1];
     return std::lower_bound(begin, end, row, [](const Entry& e, int r) { return e.row < r; })->at;
   };
-  for (int c = 0; c < n; ++c) {
-    const int J = block_of[c], cl = c - offsets[J], pj = position[J];
-    int I = -1;
-    std::int64_t base = 0, row_stride = 0, column_stride = 0;  // target = base + rl·row_stride + cl·column_stride
-    for (Eigen::SparseMatrix<double>::InnerIterator it(upper, c); it; ++it, ++k) {
-      if (block_of[it.row()] != I) {
-        I = block_of[it.row()];
-        const int pi = position[I];
-        if (pi > pj) {
-          base = std::int64_t(entry_at(pi, pj)), row_stride = 1, column_stride = sizes[I];
-        } else if (pi < pj) {
-          base = std::int64_t(entry_at(pj, pi)), row_stride = sizes[J], column_stride = 1;
-        } else {
-          base = std::int64_t(m_columns[pj].diagonal), row_stride = sizes[J], column_stride = 1;
-        }
-      }
-      const int rl = int(it.row()) - offsets[I];
-      // Diagonal blocks: entry (rl ≤ cl) goes to the lower triangle, (cl, rl).
-      m_target[k] = base + rl * row_stride + cl * column_stride;
-      m_target_column[k] = std::min(position[I], pj);
+  m_target.clear();
+  m_input_at.clear();
+  std::size_t input = 0;
+  for (int J = 0; J < nb; ++J)
+    for (int k = H.column_starts[J]; k < H.column_starts[J + 1]; ++k) {
+      const int I = H.rows[k], pi = position[I], pj = position[J];
+      if (pi == pj)
+        m_target.push_back({Target::Diagonal, pj, m_columns[pj].diagonal});
+      else if (pi > pj)
+        m_target.push_back({Target::AsIs, pj, entry_at(pi, pj)});
+      else
+        m_target.push_back({Target::Transposed, pi, entry_at(pj, pi)});
+      m_input_at.push_back(input);
+      input += std::size_t(sizes[I]) * sizes[J];
     }
-  }
+  m_input_at.push_back(input);
+  m_input.clear();
+  m_factorised = BlockUpper{H.offsets, H.column_starts, H.rows, {}};
   const bool uniform = std::all_of(sizes.begin(), sizes.end(), [&](int s) { return s == sizes.front(); });
   m_uniform = uniform && nb ? sizes.front() : 0;
 }
@@ -256,17 +238,28 @@ bool BlockCholesky::factor_column(int j, std::vector<int>& slot) {
 
 bool BlockCholesky::factorize(const Eigen::SparseMatrix<double>& upper) {
   if (!analysed()) throw std::logic_error("BlockCholesky::factorize before analyze");
-  const double* values = upper.valuePtr();
-  const std::size_t nnz = m_target.size(), nb = m_columns.size();
-  // After a successful factorisation of the same pattern only the columns whose entries changed
-  // and the columns they update (their ancestors) are computed again: the others' blocks of L
-  // are those a full factorisation would give, bit for bit (friction's revised directions
-  // change a few stencils' blocks and factorise again).
+  std::vector<int> sizes(m_factorised.num_blocks());
+  for (int b = 0; b < m_factorised.num_blocks(); ++b) sizes[b] = m_factorised.size(b);
+  m_gathered = gather_blocks(upper, sizes);
+  return factorize(m_gathered.blocks);
+}
+
+bool BlockCholesky::factorize(const BlockUpper& H, double shift) {
+  if (!analysed()) throw std::logic_error("BlockCholesky::factorize before analyze");
+  if (H.column_starts != m_factorised.column_starts || H.rows != m_factorised.rows)
+    throw std::invalid_argument("BlockCholesky::factorize: not the block pattern analyze() was given");
+  const std::size_t blocks = m_target.size(), nb = m_columns.size();
+  const auto numbers = [&](std::size_t k) { return m_input_at[k + 1] - m_input_at[k]; };
+  // After a successful factorisation of the same pattern and shift only the columns whose
+  // blocks changed and the columns they update (their ancestors) are computed again: the
+  // others' blocks of L are those a full factorisation would give, bit for bit (friction's
+  // revised directions change a few stencils' blocks and factorise again).
   std::vector<char> redo(nb, 1);
-  if (m_input.size() == nnz) {
+  if (!m_input.empty() && shift == m_shift) {
     std::fill(redo.begin(), redo.end(), 0);
-    for (std::size_t k = 0; k < nnz; ++k)
-      if (values[k] != m_input[k]) redo[m_target_column[k]] = 1;
+    for (std::size_t k = 0; k < blocks; ++k)
+      if (!redo[m_target[k].column] && !std::equal(H.values[k], H.values[k] + numbers(k), m_input.data() + m_input_at[k]))
+        redo[m_target[k].column] = 1;
     for (int j : m_by_level)  // a column's descendants come before it
       for (int u = m_update_offsets[j]; u < m_update_offsets[j + 1] && !redo[j]; ++u) redo[j] = redo[m_updates[u].column];
   }
@@ -277,8 +270,24 @@ bool BlockCholesky::factorize(const Eigen::SparseMatrix<double>& upper) {
     const std::size_t end = j + 1 < nb ? m_columns[j + 1].diagonal : m_pool.size();
     std::fill(m_pool.begin() + m_columns[j].diagonal, m_pool.begin() + end, 0.0);
   }
-  for (std::size_t k = 0; k < nnz; ++k)
-    if (redo[m_target_column[k]]) m_pool[m_target[k]] = values[k];
+  for (int J = 0; J < H.num_blocks(); ++J)
+    for (int k = H.column_starts[J]; k < H.column_starts[J + 1]; ++k) {
+      const Target& t = m_target[k];
+      if (!redo[t.column]) continue;
+      const int si = H.size(H.rows[k]), sj = H.size(J);
+      const double* a = H.values[k];  // a(r, c) = a[r + c·si]
+      double* l = m_pool.data() + t.at;
+      if (t.kind == Target::AsIs) {
+        std::copy(a, a + std::size_t(si) * sj, l);
+      } else if (t.kind == Target::Transposed) {
+        for (int c = 0; c < sj; ++c)
+          for (int r = 0; r < si; ++r) l[c + std::size_t(r) * sj] = a[r + std::size_t(c) * si];
+      } else {
+        for (int c = 0; c < sj; ++c)
+          for (int r = 0; r <= c; ++r) l[c + std::size_t(r) * sj] = a[r + std::size_t(c) * si];
+        for (int c = 0; c < sj; ++c) l[c + std::size_t(c) * sj] += shift;
+      }
+    }
   tbb::enumerable_thread_specific<std::vector<int>> slots(std::vector<int>(nb, -1));
   std::atomic<bool> ok{true};
   for_levels(m_level_offsets, m_by_level, true, kFactorSplit, [&](int j) {
@@ -288,10 +297,17 @@ bool BlockCholesky::factorize(const Eigen::SparseMatrix<double>& upper) {
                                             : factor_column<Eigen::Dynamic>(j, slots.local());
     if (!column_ok) ok = false;
   });
-  if (ok)
-    m_input.assign(values, values + nnz);
-  else
-    m_input.clear();  // the factor is incomplete: the next factorisation starts afresh
+  // H is kept only under a complete factor: after a failure the next factorisation starts afresh.
+  m_input.clear();
+  m_factorised.values.clear();
+  if (ok) {
+    m_input.resize(m_input_at.back());
+    for (std::size_t k = 0; k < blocks; ++k) {
+      std::copy(H.values[k], H.values[k] + numbers(k), m_input.data() + m_input_at[k]);
+      m_factorised.values.push_back(m_input.data() + m_input_at[k]);
+    }
+    m_shift = shift;
+  }
   return ok;
 }
 
@@ -320,6 +336,11 @@ void BlockCholesky::solve_in_place(Eigen::VectorXd& x) const {
     }
     y = Eigen::Matrix<double, S, 1>(L(cj.diagonal, cj.size, cj.size).transpose().lazyProduct(y));
   });
+}
+
+Eigen::VectorXd BlockCholesky::multiply(const Eigen::VectorXd& x) const {
+  if (m_factorised.values.size() != m_target.size()) throw std::logic_error("BlockCholesky::multiply without a factor");
+  return m_factorised.multiply(x, m_shift);
 }
 
 Eigen::VectorXd BlockCholesky::solve(const Eigen::VectorXd& b) const {

@@ -13,9 +13,12 @@
 #include <cstdint>
 #include <vector>
 
+#include <stiffsoft/coupling/linear_solver/block_upper.hpp>
+
 namespace stiffsoft {
 
-/// H = Pᵀ L Lᵀ P for a symmetric positive definite H given by its upper triangle, with P a
+/// H = Pᵀ L Lᵀ P for a symmetric positive definite H given by its upper triangle in dense
+/// blocks (BlockUpper, or a CSC whose blocks are gathered), with P a
 /// permutation of whole DOF blocks (approximate minimum degree on the block graph) and L
 /// lower triangular in dense blocks.
 ///
@@ -24,35 +27,35 @@ namespace stiffsoft {
 /// elimination tree), so factors and solutions are the same bit for bit.
 class BlockCholesky {
  public:
-  /// Symbolic analysis of `upper`'s pattern (n × n CSC, entries with row ≤ column) over DOF
-  /// blocks of the given sizes (Σ sizes = n): ordering, elimination tree, the block pattern of
-  /// L and where each stored entry of `upper` goes. Throws std::invalid_argument when the
-  /// sizes do not add up to n or an entry lies below the diagonal.
+  /// Symbolic analysis of H's block pattern: ordering, elimination tree, the block pattern of
+  /// L and where each stored block of H goes. Throws std::invalid_argument when a stored
+  /// block lies below the diagonal.
+  void analyze(const BlockUpper& H);
+  /// analyze() of the blocks of `upper` (n × n CSC, entries with row ≤ column) over DOF blocks
+  /// of the given sizes (Σ sizes = n; see gather_blocks(), which throws when they do not fit).
   void analyze(const Eigen::SparseMatrix<double>& upper, const std::vector<int>& sizes);
-  /// Numeric factorisation of `upper` (the analysed pattern; throws std::logic_error before
-  /// analyze()); false when a pivot block is not positive definite (numerically), after which
-  /// solve() must not be called. After a successful factorisation of the same analysis, only
-  /// the columns whose entries changed and their ancestors in the elimination tree are
-  /// computed again (the same factor, bit for bit).
+  /// Numeric factorisation of H + shift·I (H of the analysed pattern, else std::invalid_argument;
+  /// std::logic_error before analyze()); false when a pivot block is not positive definite
+  /// (numerically), after which solve() must not be called. After a successful factorisation
+  /// of the same analysis and shift, only the columns whose blocks changed and their ancestors
+  /// in the elimination tree are computed again (the same factor, bit for bit).
+  bool factorize(const BlockUpper& H, double shift = 0);
+  /// factorize() of the blocks of `upper`, of the pattern analyze() was given.
   bool factorize(const Eigen::SparseMatrix<double>& upper);
   /// Columns (DOF blocks) the last factorize() computed: all of them, or fewer when it could
   /// keep some from the factorisation before.
   std::size_t refactored_columns() const { return m_refactored; }
   /// x = H⁻¹ b with the last factor.
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
+  /// y = (H + shift·I) x with the last successfully factorised H and shift, block by block;
+  /// for residuals without a copy of H. Valid until the next analyze() or failed factorize().
+  Eigen::VectorXd multiply(const Eigen::VectorXd& x) const;
   /// Floating-point operations of one factorisation, from the symbolic analysis.
   double flops() const { return m_flops; }
   /// Scalar entries of L (its lower triangle, diagonal blocks' lower halves included).
   double nonzeros() const { return m_nonzeros; }
   /// Whether analyze() has been called.
   bool analysed() const { return !m_column_offsets.empty(); }
-  /// The upper triangle of the last successfully factorised H (the analysed pattern with the
-  /// values kept for the next factorisation's comparison), valid until the next analyze() or
-  /// failed factorize(); for residuals without a copy of H.
-  Eigen::Map<const Eigen::SparseMatrix<double>> factorised() const {
-    const Eigen::Index n = std::max<Eigen::Index>(0, Eigen::Index(m_outer.size()) - 1);
-    return {n, n, Eigen::Index(m_input.size()), m_outer.data(), m_inner.data(), m_input.data()};
-  }
 
  private:
   /// Column j of L in the elimination order: one DOF block.
@@ -86,10 +89,20 @@ class BlockCholesky {
   std::vector<int> m_update_offsets;             // m_updates[m_update_offsets[j] …): the k that update j
   std::vector<Update> m_updates;
   std::vector<int> m_level_offsets, m_by_level;  // columns grouped by height in the elimination tree
-  std::vector<std::int64_t> m_target;            // per stored entry of `upper`: its pool index
-  std::vector<int> m_target_column;              // … and the column of L that holds it
-  std::vector<double> m_input;                   // `upper`'s values at the last successful factorisation
-  std::vector<int> m_outer, m_inner;             // `upper`'s pattern (compressed columns)
+  /// Where a stored block of H goes: L_jj's place (its upper triangle into L_jj's lower one),
+  /// a block of L as it is, or a block of L transposed (when its block row comes first in the
+  /// elimination order); `column` is the column of L that holds it.
+  struct Target {
+    enum Kind : char { Diagonal, AsIs, Transposed } kind;
+    int column;
+    std::size_t at;
+  };
+  std::vector<Target> m_target;                  // per stored block of H
+  std::vector<std::size_t> m_input_at;           // per stored block of H: where m_input holds it
+  std::vector<double> m_input;                   // H's blocks at the last successful factorisation
+  BlockUpper m_factorised;                       // H's pattern, its values in m_input
+  double m_shift = 0;                            // … and the shift factorised with them
+  GatheredBlocks m_gathered;                     // the blocks of the last CSC given
   std::vector<double> m_pool;                    // L's blocks
   int m_uniform = 0;                             // the common block size, 0 when they differ
   double m_flops = 0, m_nonzeros = 0;

@@ -11,14 +11,19 @@
 namespace stiffsoft {
 
 /// Direct sparse Cholesky over the DOF blocks (set_block_sizes(); without them the blocks are
-/// inferred from the pattern, infer_block_sizes()). Each solve takes one step of iterative
-/// refinement; its report gives the explicit relative residual ‖b − H p‖/‖b‖.
+/// inferred from the pattern, infer_block_sizes()), or over the blocks analyze_blocks() is
+/// given. Each solve takes one step of iterative refinement, its residual a block product; its
+/// report gives the explicit relative residual ‖b − H p‖/‖b‖.
 class BlockCholeskySolver final : public LinearSolver {
  public:
   /// See LinearSolver.
   void analyze_pattern(const Eigen::SparseMatrix<double>& upper) override;
   /// See LinearSolver.
   bool factorize(const Eigen::SparseMatrix<double>& upper) override;
+  /// Analyses the blocks in place (the block sizes are H's).
+  void analyze_blocks(const BlockUpper& H) override;
+  /// Copies the blocks straight into the factor.
+  bool factorize_blocks(const BlockUpper& H, double shift) override;
   /// See LinearSolver.
   Eigen::VectorXd solve(const Eigen::VectorXd& b) override;
   /// See LinearSolver.
@@ -32,6 +37,10 @@ class BlockCholeskySolver final : public LinearSolver {
   BlockCholesky m_factor;
   std::vector<int> m_sizes;
   bool m_factorized = false;
+
+  /// Runs factorize (a call of m_factor's) and fills the report.
+  template <class Factorize>
+  bool timed_factorize(Factorize&& factorize);
 };
 
 }  // namespace stiffsoft

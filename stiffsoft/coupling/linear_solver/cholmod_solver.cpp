@@ -111,8 +111,9 @@ Eigen::VectorXd CholmodSolver::solve(const Eigen::VectorXd& b) {
     m_report.status = LinearSolveStatus::Indefinite;
     return Eigen::VectorXd::Constant(n, std::numeric_limits<double>::quiet_NaN());
   }
+  const auto H = m_impl->upper.selfadjointView<Eigen::Upper>();
   Eigen::VectorXd p = refined_solve(
-      m_impl->upper, b, [&](const Eigen::VectorXd& rhs) { return Eigen::VectorXd(m_impl->llt.solve(rhs)); }, "CHOLMOD",
+      [&](const Eigen::VectorXd& x) { return Eigen::VectorXd(H * x); }, b, [&](const Eigen::VectorXd& rhs) { return Eigen::VectorXd(m_impl->llt.solve(rhs)); }, "CHOLMOD",
       m_report);
   if (m_impl->llt.info() != Eigen::Success && m_report.converged()) {
     m_report.status = LinearSolveStatus::Diverged;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include <stiffsoft/coupling/linear_solver/block_upper.hpp>
 #include <stiffsoft/coupling/linear_solver/linear_solve_report.hpp>
 
 namespace stiffsoft {
@@ -27,6 +28,12 @@ class LinearSolver {
   /// Numeric factorisation (or set-up); returns false when H is not positive definite
   /// (numerically), in which case solve() must not be called.
   virtual bool factorize(const Eigen::SparseMatrix<double>& upper) = 0;
+  /// analyze_pattern() for H given by its upper triangle in dense DOF blocks (Newton's assembled
+  /// Hessian, read in place). By default through H.compressed(); a block backend reads the blocks.
+  virtual void analyze_blocks(const BlockUpper& H) { analyze_pattern(H.compressed()); }
+  /// factorize() of H + shift·I, H given as for analyze_blocks(). By default through
+  /// H.compressed(shift); a block backend copies the blocks without forming a CSC.
+  virtual bool factorize_blocks(const BlockUpper& H, double shift) { return factorize(H.compressed(shift)); }
   /// The solution of H p = b with the last factorised H; all NaN when the solve failed.
   virtual Eigen::VectorXd solve(const Eigen::VectorXd& b) = 0;
   /// The backend's name, for logs and stats.

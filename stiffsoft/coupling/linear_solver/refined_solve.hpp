@@ -11,21 +11,19 @@
 
 namespace stiffsoft {
 
-/// p = F⁻¹ b, then p += F⁻¹ (b − H p) with H = `upper` (a compressed sparse upper triangle,
-/// owned or mapped) + its mirror and F⁻¹ = `solve` (a
+/// p = F⁻¹ b, then p += F⁻¹ (b − H p) with H x = `multiply`(x) and F⁻¹ = `solve` (a
 /// factorisation of H). One refinement step brings the error from about cond(H) ε towards a
 /// few ε for one more pair of triangular solves; Newton's tightest tolerances need it (without
 /// it a hinged pendulum in joints_test stalled at 2.5e-8 m/s against its 1e-8 m/s tolerance).
 /// Sets the report's residual ‖b − H p‖/‖b‖, status and reason (`who` names the backend);
 /// a p that is not finite is returned as all NaN with status Diverged.
-template <class Upper, class Solve>
-Eigen::VectorXd refined_solve(const Upper& upper, const Eigen::VectorXd& b, Solve&& solve,
+template <class Multiply, class Solve>
+Eigen::VectorXd refined_solve(Multiply&& multiply, const Eigen::VectorXd& b, Solve&& solve,
                               const std::string& who, LinearSolveReport& report) {
   Eigen::VectorXd p = solve(b);
-  const auto H = upper.template selfadjointView<Eigen::Upper>();
-  p += solve(Eigen::VectorXd(b - H * p));
+  p += solve(Eigen::VectorXd(b - multiply(p)));
   const double b_norm = b.norm();
-  const Eigen::VectorXd r = b - H * p;
+  const Eigen::VectorXd r = b - multiply(p);
   report.relative_residual = b_norm > 0 ? r.norm() / b_norm : r.norm();
   report.iterations = 0;
   if (p.allFinite()) {

@@ -110,46 +110,29 @@ BlockHessian::ColumnSlots BlockHessian::column_slots() const {
   return out;
 }
 
-Eigen::SparseMatrix<double> BlockHessian::upper() const {
+BlockUpper BlockHessian::upper_blocks() const {
   const int n = num_blocks();
   const ColumnSlots columns = column_slots();
-  Eigen::SparseMatrix<double> H(m_num_dofs, m_num_dofs);
-  // Filled column by column in row order: the compressed arrays are written directly.
-  Eigen::SparseMatrix<double>::StorageIndex* outer = H.outerIndexPtr();
-  std::size_t nnz = 0;
-  for (int bj = 0; bj < n; ++bj) {
-    int above = 0;
-    for (int k = columns.offsets[bj]; k < columns.offsets[bj + 1]; ++k) above += m_blocks[m_slots[columns.slots[k]].row].size;
-    for (int c = 0; c < m_blocks[bj].size; ++c) nnz += std::size_t(above + c + 1);
-  }
-  H.resizeNonZeros(Eigen::Index(nnz));
-  double* values = H.valuePtr();
-  Eigen::SparseMatrix<double>::StorageIndex* inner = H.innerIndexPtr();
-  std::size_t k = 0;
-  outer[0] = 0;
-  for (int bj = 0; bj < n; ++bj) {
-    const DofBlock& col_block = m_blocks[bj];
-    const ConstBlock diagonal = block_at(m_diagonal[bj], bj, bj);
-    for (int c = 0; c < col_block.size; ++c) {
-      const int col = col_block.offset + c;
-      for (int s = columns.offsets[bj]; s < columns.offsets[bj + 1]; ++s) {
-        const Slot& slot = m_slots[columns.slots[s]];
-        const ConstBlock block = block_at(slot.at, slot.row, bj);
-        const DofBlock& row_block = m_blocks[slot.row];
-        for (int r = 0; r < row_block.size; ++r, ++k) {
-          inner[k] = row_block.offset + r;
-          values[k] = block(r, c);
-        }
-      }
-      for (int r = 0; r <= c; ++r, ++k) {
-        inner[k] = col_block.offset + r;
-        values[k] = diagonal(r, c);
-      }
-      outer[col + 1] = Eigen::SparseMatrix<double>::StorageIndex(k);
+  BlockUpper H;
+  H.offsets.reserve(std::size_t(n) + 1);
+  H.column_starts.reserve(std::size_t(n) + 1);
+  H.rows.reserve(columns.slots.size() + std::size_t(n));
+  H.values.reserve(columns.slots.size() + std::size_t(n));
+  for (int j = 0; j < n; ++j) {
+    H.offsets.push_back(m_blocks[j].offset + m_blocks[j].size);
+    for (int k = columns.offsets[j]; k < columns.offsets[j + 1]; ++k) {
+      const Slot& slot = m_slots[columns.slots[k]];
+      H.rows.push_back(slot.row);
+      H.values.push_back(m_pool.data() + slot.at);
     }
+    H.rows.push_back(j);  // the diagonal block, below the column's others
+    H.values.push_back(m_pool.data() + m_diagonal[j]);
+    H.column_starts.push_back(int(H.rows.size()));
   }
   return H;
 }
+
+Eigen::SparseMatrix<double> BlockHessian::upper() const { return upper_blocks().compressed(); }
 
 Eigen::VectorXd BlockHessian::multiply(const Eigen::VectorXd& x) const {
   const int n = num_blocks();

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include <stiffsoft/coupling/linear_solver/block_upper.hpp>
 #include <stiffsoft/coupling/model/model.hpp>
 
 namespace stiffsoft {
@@ -34,6 +35,9 @@ class BlockHessian {
   /// held on a prescribed motion): those blocks then decouple from the rest. The sparsity
   /// pattern stays as it was.
   void decouple(const std::vector<char>& held);
+  /// The upper triangle in place: its live blocks by block column, each column's by ascending
+  /// row with the diagonal block last. Valid until the matrix changes.
+  BlockUpper upper_blocks() const;
   /// The upper triangle as a compressed sparse column matrix (n × n, n = number of DOFs).
   Eigen::SparseMatrix<double> upper() const;
   /// The off-diagonal block pairs (key i·n + j, i < j), sorted: equal lists mean equal

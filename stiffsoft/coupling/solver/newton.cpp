@@ -23,29 +23,36 @@ void update_all(const std::vector<EnergyTerm*>& terms, const Configuration& c) {
 }
 
 /// The Newton direction p = −H⁻¹g; if the projected Hessian is numerically singular, shifts
-/// its diagonal until the factorisation succeeds.
+/// its diagonal until the factorisation succeeds. The solver reads H's blocks in place, or,
+/// with joints' eliminated equalities, the reduced compressed matrix.
 /// `analysed` holds the pattern_version() the solver last analysed (empty: none yet).
 bool newton_direction(const BlockHessian& H, const Eigen::VectorXd& g, LinearSolver& solver,
                       std::optional<std::uint64_t>& analysed, PhaseTimes& times, const ReducedBasis* basis,
                       Eigen::VectorXd& p) {
   ScopedTimer timer(times.solve);
-  Eigen::SparseMatrix<double> A = basis ? basis->reduce_upper(H.upper()) : H.upper();
+  const BlockUpper blocks = H.upper_blocks();
+  Eigen::SparseMatrix<double> reduced;
+  if (basis) reduced = basis->reduce_upper(blocks.compressed());
   const Eigen::VectorXd b = basis ? Eigen::VectorXd(-basis->reduce(g)) : Eigen::VectorXd(-g);
   if (analysed != H.pattern_version()) {
-    solver.analyze_pattern(A);
+    if (basis)
+      solver.analyze_pattern(reduced);
+    else
+      solver.analyze_blocks(blocks);
     analysed = H.pattern_version();
   }
+  const Eigen::VectorXd diagonal = basis ? Eigen::VectorXd(reduced.diagonal()) : blocks.diagonal();
+  const double scale = diagonal.cwiseAbs().maxCoeff();
   double shift = 0;
-  const double scale = A.diagonal().cwiseAbs().maxCoeff();
   for (int attempt = 0; attempt < 8; ++attempt) {
-    if (solver.factorize(A)) {
+    if (basis)
+      for (int i = 0; i < reduced.rows(); ++i) reduced.coeffRef(i, i) = diagonal[i] + shift;
+    if (basis ? solver.factorize(reduced) : solver.factorize_blocks(blocks, shift)) {
       p = solver.solve(b);
       if (basis && p.allFinite()) p = basis->expand(p);
       if (p.allFinite()) return true;
     }
-    const double next = shift == 0 ? 1e-10 * scale : 10 * shift;
-    for (int i = 0; i < A.rows(); ++i) A.coeffRef(i, i) += next - shift;
-    shift = next;
+    shift = shift == 0 ? 1e-10 * scale : 10 * shift;
   }
   return false;
 }

@@ -1,0 +1,142 @@
+#include <stiffsoft/coupling/linear_solver/block_upper.hpp>
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace stiffsoft {
+
+namespace {
+
+/// y_i += A x_j and, off the diagonal, y_j += Aᵀ x_i for one stored block (a diagonal one with
+/// `shift` added to its diagonal first); S fixes both sizes at compile time when they are equal
+/// and known (Eigen::Dynamic otherwise).
+template <int S>
+void multiply_block(const double* values, int i, int j, const BlockUpper& H, double shift, const Eigen::VectorXd& x,
+                    Eigen::VectorXd& y) {
+  const int si = H.size(i), sj = H.size(j);
+  const Eigen::Map<const Eigen::Matrix<double, S, S>> A(values, si, sj);
+  auto xi = x.segment<S>(H.offsets[i], si), xj = x.segment<S>(H.offsets[j], sj);
+  if (i == j && shift != 0) {
+    Eigen::Matrix<double, S, S> D = A;
+    D.diagonal().array() += shift;
+    y.segment<S>(H.offsets[j], sj).noalias() += D.template selfadjointView<Eigen::Upper>() * xj;
+    return;
+  }
+  if (i == j) {
+    y.segment<S>(H.offsets[j], sj).noalias() += A.template selfadjointView<Eigen::Upper>() * xj;
+    return;
+  }
+  y.segment<S>(H.offsets[i], si).noalias() += A * xj;
+  y.segment<S>(H.offsets[j], sj).noalias() += A.transpose() * xi;
+}
+
+}  // namespace
+
+long BlockUpper::upper_nonzeros() const {
+  long count = 0;
+  for (int j = 0; j < num_blocks(); ++j)
+    for (int k = column_starts[j]; k < column_starts[j + 1]; ++k)
+      count += rows[k] == j ? long(size(j)) * (size(j) + 1) / 2 : long(size(rows[k])) * size(j);
+  return count;
+}
+
+Eigen::VectorXd BlockUpper::diagonal() const {
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(num_dofs());
+  for (int j = 0; j < num_blocks(); ++j)
+    for (int k = column_starts[j]; k < column_starts[j + 1]; ++k)
+      if (rows[k] == j)
+        d.segment(offsets[j], size(j)) = Eigen::Map<const Eigen::MatrixXd>(values[k], size(j), size(j)).diagonal();
+  return d;
+}
+
+Eigen::SparseMatrix<double> BlockUpper::compressed(double shift) const {
+  const int n = num_dofs();
+  Eigen::SparseMatrix<double> H(n, n);
+  H.resizeNonZeros(Eigen::Index(upper_nonzeros()));
+  // Filled column by column in row order: the compressed arrays are written directly.
+  Eigen::SparseMatrix<double>::StorageIndex* outer = H.outerIndexPtr();
+  Eigen::SparseMatrix<double>::StorageIndex* inner = H.innerIndexPtr();
+  double* out = H.valuePtr();
+  std::size_t e = 0;
+  outer[0] = 0;
+  for (int j = 0; j < num_blocks(); ++j) {
+    for (int c = 0; c < size(j); ++c) {
+      const int column = offsets[j] + c;
+      for (int k = column_starts[j]; k < column_starts[j + 1]; ++k) {
+        const int i = rows[k], si = size(i);
+        const int last = i == j ? c + 1 : si;  // a diagonal block's upper triangle
+        for (int r = 0; r < last; ++r, ++e) {
+          inner[e] = offsets[i] + r;
+          out[e] = values[k][r + std::size_t(c) * si];
+        }
+        if (i == j) out[e - 1] += shift;
+      }
+      outer[column + 1] = Eigen::SparseMatrix<double>::StorageIndex(e);
+    }
+  }
+  return H;
+}
+
+Eigen::VectorXd BlockUpper::multiply(const Eigen::VectorXd& x, double shift) const {
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(x.size());
+  for (int j = 0; j < num_blocks(); ++j)
+    for (int k = column_starts[j]; k < column_starts[j + 1]; ++k) {
+      const int i = rows[k];
+      if (size(i) == 12 && size(j) == 12)
+        multiply_block<12>(values[k], i, j, *this, shift, x, y);
+      else if (size(i) == 3 && size(j) == 3)
+        multiply_block<3>(values[k], i, j, *this, shift, x, y);
+      else
+        multiply_block<Eigen::Dynamic>(values[k], i, j, *this, shift, x, y);
+    }
+  return y;
+}
+
+GatheredBlocks gather_blocks(const Eigen::SparseMatrix<double>& upper, const std::vector<int>& sizes) {
+  const int n = int(upper.rows());
+  GatheredBlocks g;
+  BlockUpper& H = g.blocks;
+  for (int s : sizes) H.offsets.push_back(H.offsets.back() + s);
+  if (upper.cols() != n || H.num_dofs() != n)
+    throw std::invalid_argument("BlockCholesky: DOF blocks of " + std::to_string(H.num_dofs()) + " DOFs for a " +
+                                std::to_string(n) + " × " + std::to_string(upper.cols()) + " matrix");
+  const int nb = H.num_blocks();
+  std::vector<int> block_of(n);
+  for (int b = 0; b < nb; ++b) std::fill(block_of.begin() + H.offsets[b], block_of.begin() + H.offsets[b + 1], b);
+  // Which blocks each block column stores (rows ascending, its diagonal block always), and
+  // where each one starts in the pool.
+  std::vector<int> slot_of(nb, -1);
+  std::vector<std::size_t> at;
+  std::size_t pool = 0;
+  for (int J = 0; J < nb; ++J) {
+    const int first = int(H.rows.size());
+    for (int c = H.offsets[J]; c < H.offsets[J + 1]; ++c)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(upper, c); it; ++it) {
+        if (it.row() > c) throw std::invalid_argument("BlockCholesky: an entry below the diagonal");
+        const int I = block_of[it.row()];
+        if (slot_of[I] != J) slot_of[I] = J, H.rows.push_back(I);
+      }
+    if (slot_of[J] != J) slot_of[J] = J, H.rows.push_back(J);
+    std::sort(H.rows.begin() + first, H.rows.end());
+    for (int k = first; k < int(H.rows.size()); ++k) {
+      at.push_back(pool);
+      pool += std::size_t(H.size(H.rows[k])) * H.size(J);
+    }
+    H.column_starts.push_back(int(H.rows.size()));
+  }
+  g.pool.assign(pool, 0.0);
+  std::vector<int> k_of(nb, -1);
+  for (int J = 0; J < nb; ++J) {
+    for (int k = H.column_starts[J]; k < H.column_starts[J + 1]; ++k) k_of[H.rows[k]] = k;
+    for (int c = H.offsets[J]; c < H.offsets[J + 1]; ++c)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(upper, c); it; ++it) {
+        const int I = block_of[it.row()], k = k_of[I];
+        g.pool[at[k] + std::size_t(it.row() - H.offsets[I]) + std::size_t(c - H.offsets[J]) * H.size(I)] = it.value();
+      }
+  }
+  for (std::size_t k = 0; k < at.size(); ++k) H.values.push_back(g.pool.data() + at[k]);
+  return g;
+}
+
+}  // namespace stiffsoft
