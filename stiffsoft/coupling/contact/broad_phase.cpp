@@ -180,15 +180,28 @@ std::vector<std::array<int, 2>> body_pairs(const Model& model, const std::vector
   for (int b = 0; b < nb; ++b) order[b] = b;
   std::sort(order.begin(), order.end(),
             [&](int a, int b) { return body_box[a].lo[0] < body_box[b].lo[0]; });
-  std::vector<std::array<int, 2>> pairs;
+  // The boxes and whether each body moves, in sweep order: the inner loop reads them in a row.
+  struct Swept {
+    Box box;
+    bool moves;
+  };
+  std::vector<Swept> swept(nb);
+  for (int i = 0; i < nb; ++i) swept[i] = {body_box[order[i]], moves(model.bodies[order[i]])};
+  // Most bodies the sweep meets do not overlap in y or z, unpredictably: each is written and
+  // kept only when it does, without a branch on it.
+  std::vector<std::array<int, 2>> pairs(64);
+  std::size_t count = 0;
   for (int i = 0; i < nb; ++i) {
-    const int a = order[i];
-    for (int j = i + 1; j < nb && body_box[order[j]].lo[0] <= body_box[a].hi[0]; ++j) {
-      const int b = order[j];
-      if (!moves(model.bodies[a]) && !moves(model.bodies[b])) continue;
-      if (body_box[a].overlaps(body_box[b])) pairs.push_back({std::min(a, b), std::max(a, b)});
+    const Swept& a = swept[i];
+    for (int j = i + 1; j < nb && swept[j].box.lo[0] <= a.box.hi[0]; ++j) {
+      const Swept& b = swept[j];
+      if (count == pairs.size()) pairs.resize(2 * count);
+      pairs[count] = {std::min(order[i], order[j]), std::max(order[i], order[j])};
+      count += (a.moves | b.moves) & (a.box.lo[0] <= b.box.hi[0]) & (a.box.lo[1] <= b.box.hi[1]) &
+               (b.box.lo[1] <= a.box.hi[1]) & (a.box.lo[2] <= b.box.hi[2]) & (b.box.lo[2] <= a.box.hi[2]);
     }
   }
+  pairs.resize(count);
   for (int b = 0; b < nb; ++b)
     if (model.bodies[b].self_contact()) pairs.push_back({b, b});
   return pairs;
