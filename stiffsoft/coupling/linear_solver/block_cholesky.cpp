@@ -4,10 +4,10 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
-#include <Eigen/Cholesky>
 #include <Eigen/OrderingMethods>
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -108,6 +108,39 @@ Elimination eliminate(const std::vector<std::vector<int>>& adjacent, const std::
     if (!s.empty()) children[s.front()].push_back(j);
   }
   return e;
+}
+
+/// D ← L⁻¹ in place, L the lower Cholesky factor of the s × s block whose lower triangle D
+/// holds (D = L Lᵀ); false when a pivot is not positive (D is then not positive definite).
+/// Plain loops: for blocks of 12 or 3 the compiler unrolls them, where Eigen's LLT and
+/// triangular solve go through its general blocked kernels.
+template <int S>
+bool invert_cholesky_factor(Block<S>& D, int s) {
+  for (int j = 0; j < s; ++j) {  // L, column by column, over D's lower triangle
+    double pivot = D(j, j);
+    for (int k = 0; k < j; ++k) pivot -= D(j, k) * D(j, k);
+    if (!(pivot > 0.0)) return false;
+    const double l_jj = std::sqrt(pivot);
+    D(j, j) = l_jj;
+    for (int i = j + 1; i < s; ++i) {
+      double v = D(i, j);
+      for (int k = 0; k < j; ++k) v -= D(i, k) * D(j, k);
+      D(i, j) = v / l_jj;
+    }
+  }
+  // L⁻¹ by rows: row i of X = L⁻¹ needs only rows k < i of X and row i of L, so it overwrites
+  // row i of L once L's row is read.
+  for (int i = 0; i < s; ++i) {
+    const double inverse_ii = 1.0 / D(i, i);
+    for (int j = 0; j < i; ++j) {
+      double v = 0.0;
+      for (int k = j; k < i; ++k) v += D(i, k) * D(k, j);
+      D(i, j) = -v * inverse_ii;
+    }
+    D(i, i) = inverse_ii;
+    for (int j = i + 1; j < s; ++j) D(i, j) = 0.0;
+  }
+  return true;
 }
 
 }  // namespace
@@ -225,10 +258,7 @@ bool BlockCholesky::factor_column(int j, std::vector<int>& slot) {
   }
   // D's lower triangle holds the updated pivot block; the pool keeps L_jj⁻¹ in its place, so
   // that the blocks below and both triangular solves are plain products.
-  const Eigen::LLT<Eigen::Matrix<double, S, S>> llt(D);
-  if (llt.info() != Eigen::Success) return false;
-  D.setIdentity(s, s);
-  llt.matrixL().solveInPlace(D);
+  if (!invert_cholesky_factor<S>(D, s)) return false;
   for (int e = begin; e < end; ++e) {
     Block<S> B(pool + m_entries[e].at, m_columns[m_entries[e].row].size, s);
     B = Eigen::Matrix<double, S, S>(B.lazyProduct(D.transpose()));  // L_ij = B_i L_jj⁻ᵀ
