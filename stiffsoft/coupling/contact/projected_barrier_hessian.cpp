@@ -1,4 +1,5 @@
 #include <stiffsoft/coupling/contact/projected_barrier_hessian.hpp>
+#include <stiffsoft/coupling/contact/symmetric_eigen.hpp>
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
@@ -35,13 +36,18 @@ Matrix12d project_in_distance_span(const DistanceCurvature& k, double db, double
     }
     S.noalias() -= (2.0 * db) * Y.lazyProduct(k.gram_pinv.template topLeftCorner<M, M>()).lazyProduct(Y.transpose());
   }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, n, n>> es(S);
+  SymmetricEigen<n> es = symmetric_eigen<n>(S);
+  if (!es.converged) {  // a safety net: Eigen's solver
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, n, n>> eigen(S);
+    es.values = eigen.eigenvalues();
+    es.vectors = eigen.eigenvectors();
+  }
   // H₊ = Σ_m λ_m⁺ g_m g_mᵀ, g_m = ĉ ⊗ v_m,head + (q v_m,tail) ⊗ r̂.
   Matrix12d H = Matrix12d::Zero();
   for (int m = 0; m < n; ++m) {
-    const double lambda = es.eigenvalues()[m];
+    const double lambda = es.values[m];
     if (!(lambda > 0.0)) continue;
-    const auto v = es.eigenvectors().col(m);
+    const auto v = es.vectors.col(m);
     Eigen::Vector4d along_r = Eigen::Vector4d::Zero();
     if constexpr (M > 0) along_r = q.leftCols<M>() * v.template tail<M>();
     Vector12d g;
