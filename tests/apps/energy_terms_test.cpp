@@ -19,6 +19,7 @@
 #include <memory>
 #include <optional>
 #include <random>
+#include <type_traits>
 #include <string>
 #include <vector>
 
@@ -499,18 +500,20 @@ TEST(GaussNewtonBarrier, HessianIsTheSumOfTheStencilFormsAndPsd) {
 }
 
 TEST(StencilJacobian, LowRankBlocksEqualTheBlocksOfTheFormedHessian) {
-  // Friction's rank-2 path, (B J)ᵀ C (B J), against Jᵀ (Bᵀ C B) J on every lagged stencil of
-  // the model (affine–soft, soft–fixed and affine-only slots), with random B and C.
+  // The rank-R path, (B J)ᵀ C (B J) (friction's R = 2, the barrier's projection up to 5),
+  // against Jᵀ (Bᵀ C B) J on every lagged stencil of the model (affine–soft, soft–fixed and
+  // affine-only slots), with random B and symmetric C.
   Fixture f;
   std::mt19937 rng(7);
   std::normal_distribution<double> normal;
   int stencils = 0;
-  for (const ContactConstraint& k : f.step.lagged) {
-    Eigen::Matrix<double, 2, 12> B;
+  const auto check = [&](auto rank, const ContactConstraint& k) {
+    constexpr int R = decltype(rank)::value;
+    Eigen::Matrix<double, R, 12> B;
     for (Eigen::Index i = 0; i < B.size(); ++i) B.data()[i] = normal(rng);
-    Eigen::Matrix2d C;
-    C << normal(rng), normal(rng), 0, normal(rng);
-    C(1, 0) = C(0, 1);
+    Eigen::Matrix<double, R, R> C;
+    for (Eigen::Index i = 0; i < C.size(); ++i) C.data()[i] = normal(rng);
+    C = (C + C.transpose()).eval();
     const StencilJacobian J(f.model, k.vertices);
     StencilHessian low_rank, formed;
     J.low_rank_block_hessians(B, C, low_rank);
@@ -522,8 +525,14 @@ TEST(StencilJacobian, LowRankBlocksEqualTheBlocksOfTheFormedHessian) {
       const int size = f.model.blocks[formed.row[b]].size * f.model.blocks[formed.column[b]].size;
       const Eigen::Map<const Eigen::VectorXd> a(low_rank.values.data() + low_rank.at[b], size),
           e(formed.values.data() + formed.at[b], size);
-      EXPECT_LT((a - e).norm(), 1e-12 * std::max(1.0, e.norm())) << "stencil " << stencils << ", block " << b;
+      EXPECT_LT((a - e).norm(), 1e-12 * std::max(1.0, e.norm())) << "rank " << R << ", stencil " << stencils << ", block " << b;
     }
+  };
+  for (const ContactConstraint& k : f.step.lagged) {
+    check(std::integral_constant<int, 1>{}, k);
+    check(std::integral_constant<int, 2>{}, k);
+    check(std::integral_constant<int, 3>{}, k);
+    check(std::integral_constant<int, 5>{}, k);
     ++stencils;
   }
   EXPECT_GT(stencils, 0);

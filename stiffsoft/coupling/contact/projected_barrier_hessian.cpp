@@ -10,7 +10,7 @@ namespace {
 
 /// The projection for M closest-point parameters (the order of S is 3 + M).
 template <int M>
-Matrix12d project_in_distance_span(const DistanceCurvature& k, double db, double ddb) {
+LowRankHessian project_in_distance_span(const DistanceCurvature& k, double db, double ddb) {
   constexpr int n = 3 + M;
   const double c2 = k.c.squaredNorm(), c_norm = std::sqrt(c2), r_norm = k.r.norm();
   const Eigen::Vector4d c_hat = k.c / c_norm;
@@ -43,23 +43,28 @@ Matrix12d project_in_distance_span(const DistanceCurvature& k, double db, double
     es.vectors = eigen.eigenvectors();
   }
   // H₊ = Σ_m λ_m⁺ g_m g_mᵀ, g_m = ĉ ⊗ v_m,head + (q v_m,tail) ⊗ r̂.
-  Matrix12d H = Matrix12d::Zero();
+  LowRankHessian H;
   for (int m = 0; m < n; ++m) {
     const double lambda = es.values[m];
     if (!(lambda > 0.0)) continue;
     const auto v = es.vectors.col(m);
     Eigen::Vector4d along_r = Eigen::Vector4d::Zero();
     if constexpr (M > 0) along_r = q.leftCols<M>() * v.template tail<M>();
-    Vector12d g;
-    for (int i = 0; i < 4; ++i) g.segment<3>(3 * i) = c_hat[i] * v.template head<3>() + along_r[i] * r_hat;
-    H.selfadjointView<Eigen::Lower>().rankUpdate(g, lambda);
+    for (int i = 0; i < 4; ++i) H.G.row(H.rank).segment<3>(3 * i) = c_hat[i] * v.template head<3>() + along_r[i] * r_hat;
+    H.lambda[H.rank++] = lambda;
   }
-  return H.selfadjointView<Eigen::Lower>();
+  return H;
 }
 
 }  // namespace
 
-Matrix12d projected_barrier_hessian(const DistanceCurvature& k, double db, double ddb) {
+Matrix12d LowRankHessian::formed() const {
+  Matrix12d H = Matrix12d::Zero();
+  for (int m = 0; m < rank; ++m) H.selfadjointView<Eigen::Lower>().rankUpdate(Vector12d(G.row(m).transpose()), lambda[m]);
+  return H.selfadjointView<Eigen::Lower>();
+}
+
+LowRankHessian projected_barrier_factors(const DistanceCurvature& k, double db, double ddb) {
   switch (k.M) {
     case 0: return project_in_distance_span<0>(k, db, ddb);
     case 1: return project_in_distance_span<1>(k, db, ddb);
@@ -67,16 +72,26 @@ Matrix12d projected_barrier_hessian(const DistanceCurvature& k, double db, doubl
   }
 }
 
-Matrix12d projected_barrier_hessian(const Stencil& s, const Vector12d& x, double dhat) {
-  const auto project = [dhat](PrimitivePair kind, const Vector12d& y) -> Matrix12d {
+Matrix12d projected_barrier_hessian(const DistanceCurvature& k, double db, double ddb) {
+  return projected_barrier_factors(k, db, ddb).formed();
+}
+
+LowRankHessian projected_barrier_factors(const Stencil& s, const Vector12d& x, double dhat) {
+  const auto project = [dhat](PrimitivePair kind, const Vector12d& y) -> LowRankHessian {
     const DistanceCurvature k = distance_curvature(kind, y);
     const double d2 = k.r.squaredNorm();
-    if (d2 >= dhat * dhat) return Matrix12d::Zero();
-    return projected_barrier_hessian(k, barrier_first_derivative(d2, dhat), barrier_second_derivative(d2, dhat));
+    if (d2 >= dhat * dhat) return {};
+    return projected_barrier_factors(k, barrier_first_derivative(d2, dhat), barrier_second_derivative(d2, dhat));
   };
   if (!uses_segment_distance(s)) return project(s.kind, x);
   const Classified c = classify_edge_edge_stencil(x);
-  return scatter_classified(c, project(c.kind, gather_classified(c, x)));
+  LowRankHessian H = project(c.kind, gather_classified(c, x));
+  for (int m = 0; m < H.rank; ++m) H.G.row(m) = scatter_classified(c, Vector12d(H.G.row(m).transpose())).transpose();
+  return H;
+}
+
+Matrix12d projected_barrier_hessian(const Stencil& s, const Vector12d& x, double dhat) {
+  return projected_barrier_factors(s, x, dhat).formed();
 }
 
 }  // namespace stiffsoft::contact

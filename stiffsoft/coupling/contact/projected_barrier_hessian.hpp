@@ -15,9 +15,24 @@
 
 namespace stiffsoft::contact {
 
-/// Π₊(b'' ∇d² ∇d²ᵀ + b' ∇²d²) from the pair's distance factors, 12×12, m²; zero for
-/// d ≥ d̂. db, ddb: b'(d²) and b''(d²) (barrier.hpp).
+/// A PSD Hessian by its positive eigenpairs: H = Σ_{m < rank} λ_m g_m g_mᵀ, g_mᵀ the rows of G.
+struct LowRankHessian {
+  int rank = 0;                    ///< how many terms (≤ 5)
+  Eigen::Matrix<double, 5, 12> G;  ///< g_mᵀ (first `rank` rows used)
+  Eigen::Matrix<double, 5, 1> lambda;  ///< λ_m > 0 (first `rank` used)
+  /// Σ λ_m g_m g_mᵀ as a 12×12 matrix.
+  Matrix12d formed() const;
+};
+
+/// Π₊(b'' ∇d² ∇d²ᵀ + b' ∇²d²) from the pair's distance factors, by its positive eigenpairs;
+/// rank 0 for d ≥ d̂. db, ddb: b'(d²) and b''(d²) (barrier.hpp).
+LowRankHessian projected_barrier_factors(const DistanceCurvature& k, double db, double ddb);
+
+/// projected_barrier_factors(k, db, ddb).formed(), 12×12, m².
 Matrix12d projected_barrier_hessian(const DistanceCurvature& k, double db, double ddb);
+
+/// The eigenpairs of projected_barrier_hessian(s, x, dhat) for an unmollified stencil.
+LowRankHessian projected_barrier_factors(const Stencil& s, const Vector12d& x, double dhat);
 
 /// Newton's projected Hessian of an unmollified stencil's barrier, 12×12, m²: equal to
 /// barrier_potential_hessian(s, x, dhat, true) to round-off, at a fraction of its cost.

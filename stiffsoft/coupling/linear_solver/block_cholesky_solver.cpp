@@ -55,8 +55,9 @@ Eigen::VectorXd BlockCholeskySolver::solve(const Eigen::VectorXd& b) {
     m_report.status = LinearSolveStatus::Indefinite;
     return Eigen::VectorXd::Constant(b.size(), std::numeric_limits<double>::quiet_NaN());
   }
-  Eigen::VectorXd p = refined_solve(
-      [&](const Eigen::VectorXd& x) { return m_factor.multiply(x); }, b, [&](const Eigen::VectorXd& rhs) { return m_factor.solve(rhs); }, "block Cholesky", m_report);
+  Eigen::VectorXd p = refined_solve([&](const Eigen::VectorXd& x) { return m_factor.multiply(x); }, b,
+                                    [&](const Eigen::VectorXd& rhs) { return m_factor.solve(rhs); }, "block Cholesky",
+                                    m_report);
   m_report.solve_seconds = seconds_since(start);
   return p;
 }

@@ -89,10 +89,11 @@ void StencilJacobian::block_hessians(const Eigen::Matrix<double, 12, 12>& H_x, S
   });
 }
 
-void StencilJacobian::low_rank_block_hessians(const Eigen::Matrix<double, 2, 12>& B, const Eigen::Matrix2d& C,
+template <int R>
+void StencilJacobian::low_rank_block_hessians(const Eigen::Matrix<double, R, 12>& B, const Eigen::Matrix<double, R, R>& C,
                                               StencilHessian& out) const {
-  // (B J)_s: the 2 × columns[s] rows of each slot, in q's order.
-  std::array<Eigen::Matrix<double, 2, 12>, 4> BJ;
+  // (B J)_s: the R × columns[s] rows of each slot, in q's order.
+  std::array<Eigen::Matrix<double, R, 12>, 4> BJ;
   for (int s = 0; s < slots; ++s) BJ[s].setZero();
   for (int a = 0; a < 4; ++a) {
     const int s = slot_of[a];
@@ -100,13 +101,24 @@ void StencilJacobian::low_rank_block_hessians(const Eigen::Matrix<double, 2, 12>
     for (int k = 0; k < weights(columns[s]); ++k)
       for (int i = 0; i < 3; ++i) BJ[s].col(kDof[k][i]) += w[a][k] * B.col(3 * a + i);
   }
-  std::array<Eigen::Matrix<double, 2, 12>, 4> CBJ;  // C (B J)_s
+  std::array<Eigen::Matrix<double, R, 12>, 4> CBJ;  // C (B J)_s
   for (int s = 0; s < slots; ++s) CBJ[s] = C * BJ[s];
   for_block_pairs(*this, out, [&](int t, int s, double* block_ts) {
     Eigen::Map<Eigen::MatrixXd>(block_ts, columns[t], columns[s]) =
         BJ[t].leftCols(columns[t]).transpose().lazyProduct(CBJ[s].leftCols(columns[s]));
   });
 }
+
+template void StencilJacobian::low_rank_block_hessians<1>(const Eigen::Matrix<double, 1, 12>&, const Eigen::Matrix<double, 1, 1>&,
+                                                          StencilHessian&) const;
+template void StencilJacobian::low_rank_block_hessians<2>(const Eigen::Matrix<double, 2, 12>&, const Eigen::Matrix<double, 2, 2>&,
+                                                          StencilHessian&) const;
+template void StencilJacobian::low_rank_block_hessians<3>(const Eigen::Matrix<double, 3, 12>&, const Eigen::Matrix<double, 3, 3>&,
+                                                          StencilHessian&) const;
+template void StencilJacobian::low_rank_block_hessians<4>(const Eigen::Matrix<double, 4, 12>&, const Eigen::Matrix<double, 4, 4>&,
+                                                          StencilHessian&) const;
+template void StencilJacobian::low_rank_block_hessians<5>(const Eigen::Matrix<double, 5, 12>&, const Eigen::Matrix<double, 5, 5>&,
+                                                          StencilHessian&) const;
 
 void StencilJacobian::scatter_hessian(const Eigen::Matrix<double, 12, 12>& H_x, BlockHessian& H) const {
   StencilHessian blocks;

@@ -47,10 +47,12 @@ struct StencilJacobian {
   void scatter_gradient(const Eigen::Matrix<double, 12, 1>& g_x, Eigen::VectorXd& g) const;
   /// Jᵀ H_x J by pairs of DOF blocks, into `out`.
   void block_hessians(const Eigen::Matrix<double, 12, 12>& H_x, StencilHessian& out) const;
-  /// Jᵀ (Bᵀ C B) J by pairs of DOF blocks, into `out`, for a Hessian of rank ≤ 2 given by its
-  /// factors (B: 2×12 over the packed vertices, C: 2×2 symmetric): (B J)ᵀ C (B J), formed
+  /// Jᵀ (Bᵀ C B) J by pairs of DOF blocks, into `out`, for a Hessian of rank ≤ R given by its
+  /// factors (B: R×12 over the packed vertices, C: R×R symmetric): (B J)ᵀ C (B J), formed
   /// without the 12×12 product. Equal to block_hessians(Bᵀ C B, out) to round-off.
-  void low_rank_block_hessians(const Eigen::Matrix<double, 2, 12>& B, const Eigen::Matrix2d& C,
+  /// Instantiated for R = 1 … 5 (friction's 2; the barrier's projection, C = diag(λ)).
+  template <int R>
+  void low_rank_block_hessians(const Eigen::Matrix<double, R, 12>& B, const Eigen::Matrix<double, R, R>& C,
                                StencilHessian& out) const;
   /// Adds Jᵀ H_x J to the global Hessian.
   void scatter_hessian(const Eigen::Matrix<double, 12, 12>& H_x, BlockHessian& H) const;

@@ -6,14 +6,33 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include <stiffsoft/coupling/ccd/ccd.hpp>
+#include <stiffsoft/coupling/contact/projected_barrier_hessian.hpp>
 #include <stiffsoft/coupling/model/stencil_jacobian.hpp>
 #include <stiffsoft/coupling/terms/chunked_assembly.hpp>
 
 namespace stiffsoft {
 
 namespace {
+
+/// Jᵀ (Gᵀ diag(λ) G) J by pairs of DOF blocks, through the rank of the projected Hessian
+/// (3 for most contacts) instead of its 12×12 form: the same blocks to round-off.
+void add_low_rank_blocks(const StencilJacobian& J, const contact::LowRankHessian& H, StencilHessian& out) {
+  const auto blocks = [&](auto rank) {
+    constexpr int R = decltype(rank)::value;
+    J.low_rank_block_hessians<R>(H.G.topRows<R>(), H.lambda.head<R>().asDiagonal(), out);
+  };
+  switch (H.rank) {
+    case 0: J.block_hessians(contact::Matrix12d::Zero(), out); break;  // the pattern as before
+    case 1: blocks(std::integral_constant<int, 1>{}); break;
+    case 2: blocks(std::integral_constant<int, 2>{}); break;
+    case 3: blocks(std::integral_constant<int, 3>{}); break;
+    case 4: blocks(std::integral_constant<int, 4>{}); break;
+    default: blocks(std::integral_constant<int, 5>{}); break;
+  }
+}
 /// κ_min of IPC (ipc-toolkit, initial_barrier_stiffness): the stiffness at which the barrier's
 /// curvature at d = 1e-8 × diagonal balances 1e11 × the average mass.
 double kappa_min(const BarrierSettings& s) {
@@ -77,9 +96,16 @@ void BarrierTerm::add_hessian(const Configuration& c, BlockHessian& H) const {
       m_constraints.size(),
       [&](size_t k, StencilHessian& out) {
         const ContactConstraint& s = m_constraints[k];
-        const contact::Matrix12d H_x = m_kappa * s.weight *
-            contact::barrier_newton_hessian(s.stencil, gather(c.x, s.vertices), m_settings.dhat, m_settings.hessian);
-        StencilJacobian(m_model, s.vertices).block_hessians(H_x, out);
+        const contact::Vector12d x = gather(c.x, s.vertices);
+        const StencilJacobian J(m_model, s.vertices);
+        if (m_settings.hessian == contact::BarrierHessian::Projected && !contact::mollifier_active(s.stencil, x)) {
+          contact::LowRankHessian H_x = contact::projected_barrier_factors(s.stencil, x, m_settings.dhat);
+          H_x.lambda *= m_kappa * s.weight;
+          add_low_rank_blocks(J, H_x, out);
+          return;
+        }
+        J.block_hessians(m_kappa * s.weight * contact::barrier_newton_hessian(s.stencil, x, m_settings.dhat, m_settings.hessian),
+                         out);
       },
       [&](size_t, const StencilHessian& out) { out.add_to(H); });
 }
