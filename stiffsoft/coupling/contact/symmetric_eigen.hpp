@@ -3,8 +3,8 @@
 /// Householder tridiagonalisation, then the implicit QL method with Wilkinson's shift
 /// (EISPACK's tred2 and tql2; Golub & Van Loan, Matrix Computations, §8.3). For the 3×3 to
 /// 5×5 matrices of the barrier's projection (projected_barrier_hessian.cpp) the compiler
-/// unrolls it, where Eigen's SelfAdjointEigenSolver runs its general blocked code: 0.83 µs
-/// against 1.27 µs for a 5×5 (docs/benchmarks.md, session 25).
+/// unrolls it, where Eigen's SelfAdjointEigenSolver runs its general blocked code: 0.89 µs
+/// against 1.32 µs for a 5×5 (docs/benchmarks.md, session 25).
 
 #include <Eigen/Core>
 #include <cmath>
