@@ -276,7 +276,7 @@ bool BlockCholesky::factorize(const Eigen::SparseMatrix<double>& upper) {
 
 bool BlockCholesky::factorize(const BlockUpper& H, double shift) {
   if (!analysed()) throw std::logic_error("BlockCholesky::factorize before analyze");
-  if (H.column_starts != m_factorised.column_starts || H.rows != m_factorised.rows)
+  if (H.offsets != m_factorised.offsets || H.column_starts != m_factorised.column_starts || H.rows != m_factorised.rows)
     throw std::invalid_argument("BlockCholesky::factorize: not the block pattern analyze() was given");
   const std::size_t blocks = m_target.size(), nb = m_columns.size();
   const auto numbers = [&](std::size_t k) { return m_input_at[k + 1] - m_input_at[k]; };
