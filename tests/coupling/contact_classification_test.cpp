@@ -134,6 +134,13 @@ void for_bound_test_segments(std::mt19937& rng, const Check& check) {
   check(Vector3d(0, 0, 0), Vector3d(0, 0, 0), Vector3d(1, 1, 1), Vector3d(1, 1, 1));              // two points
 }
 
+/// A lower bound of a squared distance: finite, non-negative and at most `exact` (to rounding).
+void expect_lower_bound(double bound, double exact, int trial) {
+  EXPECT_TRUE(std::isfinite(bound)) << "trial " << trial;
+  EXPECT_GE(bound, 0.0) << "trial " << trial;
+  EXPECT_LE(bound, exact + 1e-13 * std::max(1.0, exact)) << "trial " << trial;
+}
+
 TEST(SegmentDistanceLowerBound, NeverExceedsTheDistanceAndIsUsuallyWithinHalfOfIt) {
   // Random, nearly parallel, collinear, crossing and zero-length segments: the bound is at most
   // the exact squared distance (to rounding).
@@ -142,9 +149,7 @@ TEST(SegmentDistanceLowerBound, NeverExceedsTheDistanceAndIsUsuallyWithinHalfOfI
   const auto check = [&](const Vector3d& a0, const Vector3d& a1, const Vector3d& b0, const Vector3d& b1) {
     const double exact = segment_segment_squared_distance(a0, a1, b0, b1);
     const double bound = segment_segment_squared_distance_lower_bound(a0, a1, b0, b1);
-    ASSERT_TRUE(std::isfinite(bound));
-    EXPECT_GE(bound, 0.0);
-    EXPECT_LE(bound, exact + 1e-13 * std::max(1.0, exact)) << "trial " << trials;
+    expect_lower_bound(bound, exact, trials);
     tight += bound >= 0.5 * exact;
     ++trials;
   };
@@ -162,9 +167,7 @@ TEST(LineDistanceLowerBound, NeverExceedsTheDistanceAndIsExactBetweenCrossingInt
   const auto check = [&](const Vector3d& a0, const Vector3d& a1, const Vector3d& b0, const Vector3d& b1) {
     const double exact = segment_segment_squared_distance(a0, a1, b0, b1);
     const double bound = line_line_squared_distance_lower_bound(a0, a1, b0, b1);
-    ASSERT_TRUE(std::isfinite(bound));
-    EXPECT_GE(bound, 0.0);
-    EXPECT_LE(bound, exact + 1e-13 * std::max(1.0, exact)) << "trial " << trials;
+    expect_lower_bound(bound, exact, trials);
     if (classify_edge_edge(a0, a1, b0, b1).kind == PrimitivePair::EdgeEdge && bound > 0) {
       EXPECT_NEAR(bound, exact, 1e-10 * std::max(1.0, exact)) << "trial " << trials;
       ++interior;

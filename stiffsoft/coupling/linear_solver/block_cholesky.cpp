@@ -230,8 +230,10 @@ void BlockCholesky::analyze(const BlockUpper& H) {
       input += std::size_t(sizes[I]) * sizes[J];
     }
   m_input_at.push_back(input);
-  m_input.clear();
+  m_input.assign(input, 0.0);
   m_factorised = BlockUpper{H.offsets, H.column_starts, H.rows, {}};
+  for (std::size_t k = 0; k + 1 < m_input_at.size(); ++k) m_factorised.values.push_back(m_input.data() + m_input_at[k]);
+  m_kept = false;
   const bool uniform = std::all_of(sizes.begin(), sizes.end(), [&](int s) { return s == sizes.front(); });
   m_uniform = uniform && nb ? sizes.front() : 0;
 }
@@ -285,7 +287,7 @@ bool BlockCholesky::factorize(const BlockUpper& H, double shift) {
   // others' blocks of L are those a full factorisation would give, bit for bit (friction's
   // revised directions change a few stencils' blocks and factorise again).
   std::vector<char> redo(nb, 1);
-  if (!m_input.empty() && shift == m_shift) {
+  if (m_kept && shift == m_shift) {
     std::fill(redo.begin(), redo.end(), 0);
     for (std::size_t k = 0; k < blocks; ++k)
       if (!redo[m_target[k].column] && !std::equal(H.values[k], H.values[k] + numbers(k), m_input.data() + m_input_at[k]))
@@ -328,14 +330,9 @@ bool BlockCholesky::factorize(const BlockUpper& H, double shift) {
     if (!column_ok) ok = false;
   });
   // H is kept only under a complete factor: after a failure the next factorisation starts afresh.
-  m_input.clear();
-  m_factorised.values.clear();
+  m_kept = ok;
   if (ok) {
-    m_input.resize(m_input_at.back());
-    for (std::size_t k = 0; k < blocks; ++k) {
-      std::copy(H.values[k], H.values[k] + numbers(k), m_input.data() + m_input_at[k]);
-      m_factorised.values.push_back(m_input.data() + m_input_at[k]);
-    }
+    for (std::size_t k = 0; k < blocks; ++k) std::copy(H.values[k], H.values[k] + numbers(k), m_input.data() + m_input_at[k]);
     m_shift = shift;
   }
   return ok;
@@ -369,7 +366,7 @@ void BlockCholesky::solve_in_place(Eigen::VectorXd& x) const {
 }
 
 Eigen::VectorXd BlockCholesky::multiply(const Eigen::VectorXd& x) const {
-  if (m_factorised.values.size() != m_target.size()) throw std::logic_error("BlockCholesky::multiply without a factor");
+  if (!m_kept) throw std::logic_error("BlockCholesky::multiply without a factor");
   return m_factorised.multiply(x, m_shift);
 }
 

@@ -9,8 +9,6 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
-#include <algorithm>
-#include <cstdint>
 #include <vector>
 
 #include <stiffsoft/coupling/linear_solver/block_upper.hpp>
@@ -102,6 +100,7 @@ class BlockCholesky {
   std::vector<double> m_input;                   // H's blocks at the last successful factorisation
   BlockUpper m_factorised;                       // H's pattern, its values in m_input
   double m_shift = 0;                            // … and the shift factorised with them
+  bool m_kept = false;                           // whether m_input and m_shift hold a complete factor's H
   GatheredBlocks m_gathered;                     // the blocks of the last CSC given
   std::vector<double> m_pool;                    // L's blocks
   int m_uniform = 0;                             // the common block size, 0 when they differ
