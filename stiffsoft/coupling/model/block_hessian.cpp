@@ -69,8 +69,12 @@ void BlockHessian::add(int i, int j, const Eigen::Ref<const Eigen::MatrixXd>& H)
 }
 
 void BlockHessian::add_upper(int i, int j, const double* values) {
-  const ConstBlock H(values, m_blocks[i].size, m_blocks[j].size);
-  block_at(i == j ? m_diagonal[i] : live_slot(i, j).at, i, j) += H;
+  const std::size_t at = i == j ? m_diagonal[i] : live_slot(i, j).at;  // first: creating a slot may move the pool
+  if (m_blocks[i].size == 12 && m_blocks[j].size == 12) {  // two affine bodies: fixed-size code
+    Eigen::Map<Eigen::Matrix<double, 12, 12>>(m_pool.data() + at) += Eigen::Map<const Eigen::Matrix<double, 12, 12>>(values);
+    return;
+  }
+  block_at(at, i, j) += ConstBlock(values, m_blocks[i].size, m_blocks[j].size);
 }
 
 void BlockHessian::decouple(const std::vector<char>& held) {

@@ -103,9 +103,18 @@ void StencilJacobian::low_rank_block_hessians(const Eigen::Matrix<double, R, 12>
   }
   std::array<Eigen::Matrix<double, R, 12>, 4> CBJ;  // C (B J)_s
   for (int s = 0; s < slots; ++s) CBJ[s] = C * BJ[s];
+  // (B J)_tᵀ C (B J)_s at the block's fixed size: an affine body's 12 columns or a node's 3.
+  const auto product = [&]<int Nt, int Ns>(int t, int s, double* block_ts) {
+    Eigen::Map<Eigen::Matrix<double, Nt, Ns>> block(block_ts);
+    block = BJ[t].template leftCols<Nt>().transpose().lazyProduct(CBJ[s].template leftCols<Ns>());
+  };
   for_block_pairs(*this, out, [&](int t, int s, double* block_ts) {
-    Eigen::Map<Eigen::MatrixXd>(block_ts, columns[t], columns[s]) =
-        BJ[t].leftCols(columns[t]).transpose().lazyProduct(CBJ[s].leftCols(columns[s]));
+    const int nt = columns[t], ns = columns[s];
+    if (nt == 12 && ns == 12) return product.template operator()<12, 12>(t, s, block_ts);
+    if (nt == 12 && ns == 3) return product.template operator()<12, 3>(t, s, block_ts);
+    if (nt == 3 && ns == 12) return product.template operator()<3, 12>(t, s, block_ts);
+    if (nt == 3 && ns == 3) return product.template operator()<3, 3>(t, s, block_ts);
+    Eigen::Map<Eigen::MatrixXd>(block_ts, nt, ns) = BJ[t].leftCols(nt).transpose().lazyProduct(CBJ[s].leftCols(ns));
   });
 }
 

@@ -18,10 +18,14 @@ void FrictionTerm::lag(const Configuration& c, const BarrierTerm& barrier) {
 void FrictionTerm::relag(const Configuration& c, const BarrierTerm& barrier) {
   m_stencils.clear();
   m_vertices.clear();
+  m_lagged.clear();
+  m_jacobians.clear();
   for (const ContactConstraint& k : barrier.constraints()) {
     m_stencils.push_back(contact::make_friction_stencil(k.stencil, gather(c.x, k.vertices),
                                                         barrier.dhat(), barrier.kappa() * k.weight));
     m_vertices.push_back(k.vertices);
+    m_lagged.push_back(gather(m_x_lag, k.vertices));
+    m_jacobians.emplace_back(m_model, k.vertices);
   }
 }
 
@@ -57,7 +61,7 @@ std::vector<double> FrictionTerm::normal_force_per_body(const Model& model, cons
 }
 
 contact::Vector12d FrictionTerm::displacement(const Configuration& c, size_t k) const {
-  return gather(c.x, m_vertices[k]) - gather(m_x_lag, m_vertices[k]);
+  return gather(c.x, m_vertices[k]) - m_lagged[k];
 }
 
 double FrictionTerm::value(const Configuration& c) const {
@@ -73,7 +77,7 @@ void FrictionTerm::add_gradient(const Configuration& c, Eigen::VectorXd& g) cons
       [&](size_t k, contact::Vector12d& out) {
         out = contact::friction_potential_gradient(m_stencils[k], displacement(c, k), m_mu, m_epsv_h);
       },
-      [&](size_t k, const contact::Vector12d& out) { StencilJacobian(m_model, m_vertices[k]).scatter_gradient(out, g); });
+      [&](size_t k, const contact::Vector12d& out) { m_jacobians[k].scatter_gradient(out, g); });
 }
 
 void FrictionTerm::add_hessian(const Configuration& c, BlockHessian& H) const {
@@ -83,23 +87,34 @@ void FrictionTerm::add_hessian(const Configuration& c, BlockHessian& H) const {
         // Rank ≤ 2: T is mapped through J before any 12×12 product is formed.
         const contact::FrictionHessianFactors h =
             contact::friction_hessian_factors(m_stencils[k], displacement(c, k), m_mu, m_epsv_h, true);
-        StencilJacobian(m_model, m_vertices[k]).low_rank_block_hessians(h.T, h.C, out);
+        m_jacobians[k].low_rank_block_hessians(h.T, h.C, out);
       },
       [&](size_t, const StencilHessian& out) { out.add_to(H); });
 }
 
 bool FrictionTerm::revise_hessian(const Configuration& c, const Eigen::VectorXd&, const Eigen::MatrixX3d& dx,
                                   BlockHessian& H) const {
+  /// A stencil's change of model: the majorizer less the projected Hessian where the step reverses its slide.
+  struct Revision {
+    bool reversed = false;
+    StencilHessian blocks;
+  };
   bool revised = false;
-  for (size_t k = 0; k < m_stencils.size(); ++k) {
-    const contact::Vector12d u = displacement(c, k);
-    if (!contact::step_reverses_slide(m_stencils[k], u, gather(dx, m_vertices[k]), m_epsv_h)) continue;
-    StencilJacobian(m_model, m_vertices[k])
-        .scatter_hessian(contact::friction_majorizer_hessian(m_stencils[k], u, m_mu, m_epsv_h) -
-                             contact::friction_potential_hessian(m_stencils[k], u, m_mu, m_epsv_h, true),
-                         H);
-    revised = true;
-  }
+  assemble_in_chunks<Revision>(
+      m_stencils.size(),
+      [&](size_t k, Revision& out) {
+        const contact::Vector12d u = displacement(c, k);
+        out.reversed = contact::step_reverses_slide(m_stencils[k], u, gather(dx, m_vertices[k]), m_epsv_h);
+        if (!out.reversed) return;
+        m_jacobians[k].block_hessians(contact::friction_majorizer_hessian(m_stencils[k], u, m_mu, m_epsv_h) -
+                                          contact::friction_potential_hessian(m_stencils[k], u, m_mu, m_epsv_h, true),
+                                      out.blocks);
+      },
+      [&](size_t, const Revision& out) {
+        if (!out.reversed) return;
+        out.blocks.add_to(H);
+        revised = true;
+      });
   return revised;
 }
 

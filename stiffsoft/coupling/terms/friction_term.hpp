@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <stiffsoft/coupling/contact/friction.hpp>
+#include <stiffsoft/coupling/model/stencil_jacobian.hpp>
 #include <stiffsoft/coupling/terms/barrier_term.hpp>
 
 namespace stiffsoft {
@@ -51,6 +52,8 @@ class FrictionTerm final : public EnergyTerm {
   Eigen::MatrixX3d m_x_lag;
   std::vector<contact::FrictionStencil> m_stencils;
   std::vector<std::array<int, 4>> m_vertices;
+  std::vector<contact::Vector12d> m_lagged;     ///< each stencil's vertices at xⁿ
+  std::vector<StencilJacobian> m_jacobians;     ///< each stencil's map from the DOFs
 };
 
 }  // namespace stiffsoft
