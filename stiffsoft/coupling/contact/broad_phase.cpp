@@ -241,6 +241,23 @@ void primitive_pairs(const Model& model, const PrimitiveBoxes& boxes, const std:
         [&](int e, int g) { out.edge_edge.push_back({std::min(e, g), std::max(e, g)}); });
 }
 
+/// Appends to `out` the pairs (i, j) of `pairs` whose boxes a[i] and b[j] overlap, in order.
+/// Most do in a resting pile, unpredictably: each pair is written and kept only when its boxes
+/// overlap, without a branch on it.
+void keep_overlapping(const std::vector<std::array<int, 2>>& pairs, const std::vector<Box>& a, const std::vector<Box>& b,
+                      std::vector<std::array<int, 2>>& out) {
+  std::size_t count = out.size();
+  out.resize(count + pairs.size());
+  for (const auto& pair : pairs) {
+    const Box& x = a[pair[0]];
+    const Box& y = b[pair[1]];
+    out[count] = pair;
+    count += (x.lo[0] <= y.hi[0]) & (y.lo[0] <= x.hi[0]) & (x.lo[1] <= y.hi[1]) & (y.lo[1] <= x.hi[1]) &
+             (x.lo[2] <= y.hi[2]) & (y.lo[2] <= x.hi[2]);
+  }
+  out.resize(count);
+}
+
 }  // namespace
 
 Candidates broad_phase(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
@@ -309,10 +326,8 @@ Candidates BroadPhase::find(const Model& model, const Eigen::MatrixX3d& x0, cons
           primitive_pairs(model, reference, m_body, a, b, p.pairs);
           refreshed[k] = 1;
         }
-        for (const auto& vf : p.pairs.vertex_face)
-          if (now.vertex[vf[0]].overlaps(now.face[vf[1]])) out.vertex_face.push_back(vf);
-        for (const auto& ee : p.pairs.edge_edge)
-          if (now.edge[ee[0]].overlaps(now.edge[ee[1]])) out.edge_edge.push_back(ee);
+        keep_overlapping(p.pairs.vertex_face, now.vertex, now.face, out.vertex_face);
+        keep_overlapping(p.pairs.edge_edge, now.edge, now.edge, out.edge_edge);
       },
       [&](const Candidates& part) { all.append(part); });
   m_vertex = std::move(reference.vertex);
