@@ -182,7 +182,7 @@ TEST(CcdAnalytic, LowerBoundShortcutGivesTheSameTimesBitForBit) {
   // near-contact motions, both slow (most end in the shortcut) and fast (most do not).
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const auto point = [&](double scale) { return Vector3d(u(rng), u(rng), u(rng)) * scale; };
+  const auto point = [&](double scale) -> Vector3d { return Vector3d(u(rng), u(rng), u(rng)) * scale; };
   const auto no_bound = [](const detail::Stencil&) { return 0.0; };
   int shortcut_candidates = 0;
   for (int k = 0; k < 20000; ++k) {
