@@ -332,7 +332,9 @@ bool BlockCholesky::factorize(const BlockUpper& H, double shift) {
   // H is kept only under a complete factor: after a failure the next factorisation starts afresh.
   m_kept = ok;
   if (ok) {
-    for (std::size_t k = 0; k < blocks; ++k) std::copy(H.values[k], H.values[k] + numbers(k), m_input.data() + m_input_at[k]);
+    // A column not computed again had every block equal to the kept one: only the others are copied.
+    for (std::size_t k = 0; k < blocks; ++k)
+      if (redo[m_target[k].column]) std::copy(H.values[k], H.values[k] + numbers(k), m_input.data() + m_input_at[k]);
     m_shift = shift;
   }
   return ok;
