@@ -1,10 +1,9 @@
 #include <stiffsoft/coupling/contact/friction.hpp>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <limits>
-
-#include <stiffsoft/coupling/contact/psd_projection.hpp>
 
 namespace stiffsoft::contact {
 
@@ -84,13 +83,16 @@ FrictionHessianFactors friction_hessian_factors(const FrictionStencil& f, const 
   if (mu == 0.0 || f.normal_force == 0.0) return out;
   const Eigen::Vector2d u = out.T * dx;
   const double y = u.norm();
-  Eigen::Matrix2d M = friction_f1_over_y(y, epsv_h) * Eigen::Matrix2d::Identity();
+  // M = a I − w û ûᵀ: eigenvalue a > 0 across the slide and a − w along it, which is 0 when
+  // sliding (y ≥ ε) and 2 (ε − y) / ε² > 0 inside the stick zone, so the projection clamps a − w
+  // only where rounding took it below zero: no eigen-decomposition.
+  const double a = friction_f1_over_y(y, epsv_h);
+  Eigen::Matrix2d M = a * Eigen::Matrix2d::Identity();
   if (y > 0.0) {
     const Eigen::Vector2d uh = u / y;
     const double w = y >= epsv_h ? 1.0 / y : y / (epsv_h * epsv_h);
-    M -= w * uh * uh.transpose();
+    M -= (project_psd ? std::min(w, a) : w) * uh * uh.transpose();
   }
-  if (project_psd) M = project_to_psd<2>(M);
   out.C = (mu * f.normal_force) * M;
   return out;
 }

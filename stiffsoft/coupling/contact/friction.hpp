@@ -62,8 +62,9 @@ Vector12d friction_potential_gradient(const FrictionStencil& f, const Vector12d&
 ///   y ≥ ε:     M = (I − û ûᵀ)/y,
 ///   0 < y < ε: M = (f₁/y) I + (f₁' y − f₁)/y³ u uᵀ = (2/ε − y/ε²) I − (y/ε²) û ûᵀ,
 ///   y = 0:     M = (2/ε) I;
-/// N/m. project_psd projects the 2×2 core (as ipc-toolkit does), which keeps Tᵀ M T PSD;
-/// the exact core above is PSD already for y ≤ ε, so the projection only guards round-off.
+/// N/m. project_psd projects the 2×2 core (as ipc-toolkit does), which keeps Tᵀ M T PSD: its
+/// eigenvalues are f₁/y across û and 0 (y ≥ ε) or 2 (ε − y)/ε² (y < ε) along û, so the exact
+/// core is PSD already and the projection, the second clamped at zero, only guards round-off.
 Matrix12d friction_potential_hessian(const FrictionStencil& f, const Vector12d& dx, double mu,
                                      double epsv_h, bool project_psd);
 

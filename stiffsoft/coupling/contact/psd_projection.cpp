@@ -14,7 +14,6 @@ Eigen::Matrix<double, N, N> project_to_psd(const Eigen::Matrix<double, N, N>& A)
   return V * lambda.cwiseMax(0.0).asDiagonal() * V.transpose();
 }
 
-template Eigen::Matrix<double, 2, 2> project_to_psd<2>(const Eigen::Matrix<double, 2, 2>&);
 template Eigen::Matrix<double, 9, 9> project_to_psd<9>(const Eigen::Matrix<double, 9, 9>&);
 
 namespace {

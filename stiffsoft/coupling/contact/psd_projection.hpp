@@ -1,6 +1,6 @@
 #pragma once
 /// @file Projection of symmetric stencil Hessians onto the positive semi-definite cone.
-/// The definitions live in psd_projection.cpp, instantiated there for N = 2 and 9:
+/// The definitions live in psd_projection.cpp, instantiated there for N = 9:
 /// Eigen's fixed-size eigensolvers cost every file that includes this header about half a
 /// minute of compile time when they are instantiated inline.
 
@@ -11,9 +11,10 @@ namespace stiffsoft::contact {
 /// Nearest (Frobenius) positive semi-definite matrix to the symmetric N×N matrix A:
 /// A = V Λ Vᵀ → V max(Λ, 0) Vᵀ (projected Newton, Teran et al. 2005; IPC §4).
 /// Reads the lower triangle of A. Returns A itself, bit for bit, when it is already PSD,
-/// so that projecting a PSD Hessian never perturbs it. Instantiated for N = 2 (friction's
-/// tangent core) and 9 (the tests' reference for the 9×9 case); mollified barrier stencils use
-/// project_translation_invariant_to_psd, the others projected_barrier_hessian.
+/// so that projecting a PSD Hessian never perturbs it. Instantiated for N = 9 (the tests'
+/// reference for the 9×9 case); mollified barrier stencils use
+/// project_translation_invariant_to_psd, the others projected_barrier_hessian, and friction's
+/// 2×2 core is projected in closed form (friction_hessian_factors).
 template <int N>
 Eigen::Matrix<double, N, N> project_to_psd(const Eigen::Matrix<double, N, N>& A);
 
