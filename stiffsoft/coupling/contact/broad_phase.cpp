@@ -241,21 +241,32 @@ void primitive_pairs(const Model& model, const PrimitiveBoxes& boxes, const std:
         [&](int e, int g) { out.edge_edge.push_back({std::min(e, g), std::max(e, g)}); });
 }
 
-/// Appends to `out` the pairs (i, j) of `pairs` whose boxes a[i] and b[j] overlap, in order.
-/// Most do in a resting pile, unpredictably: each pair is written and kept only when its boxes
-/// overlap, without a branch on it.
+/// Appends to `out` the pairs (i, j) of `pairs` whose boxes a[i] and b[j] overlap, in order,
+/// and, when `core` is given, to `core` those whose boxes still overlap shrunk by `shrink` on
+/// every side (the boxes before their growth). Most do in a resting pile, unpredictably: each
+/// pair is written and kept only when its boxes overlap, without a branch on it.
 void keep_overlapping(const std::vector<std::array<int, 2>>& pairs, const std::vector<Box>& a, const std::vector<Box>& b,
-                      std::vector<std::array<int, 2>>& out) {
-  std::size_t count = out.size();
+                      std::vector<std::array<int, 2>>& out, std::vector<std::array<int, 2>>* core, double shrink) {
+  std::size_t count = out.size(), core_count = core ? core->size() : 0;
   out.resize(count + pairs.size());
+  if (core) core->resize(core_count + pairs.size());
+  // Overlap of the shrunk boxes, x.lo + shrink ≤ y.hi − shrink, tested as a gap of the grown
+  // ones no smaller than 2·shrink less 1e-9 of it: a superset by far less than the CCD's own
+  // rounding allowance (additive_ccd.hpp), whose box test then rejects those pairs.
+  const double gap = 2 * shrink * (1 - 1e-9);
   for (const auto& pair : pairs) {
     const Box& x = a[pair[0]];
     const Box& y = b[pair[1]];
     out[count] = pair;
     count += (x.lo[0] <= y.hi[0]) & (y.lo[0] <= x.hi[0]) & (x.lo[1] <= y.hi[1]) & (y.lo[1] <= x.hi[1]) &
              (x.lo[2] <= y.hi[2]) & (y.lo[2] <= x.hi[2]);
+    if (!core) continue;
+    (*core)[core_count] = pair;
+    core_count += (x.lo[0] + gap <= y.hi[0]) & (y.lo[0] + gap <= x.hi[0]) & (x.lo[1] + gap <= y.hi[1]) &
+                  (y.lo[1] + gap <= x.hi[1]) & (x.lo[2] + gap <= y.hi[2]) & (y.lo[2] + gap <= x.hi[2]);
   }
   out.resize(count);
+  if (core) core->resize(core_count);
 }
 
 }  // namespace
@@ -274,7 +285,7 @@ Candidates broad_phase(const Model& model, const Eigen::MatrixX3d& x0, const Eig
 }
 
 Candidates BroadPhase::find(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
-                            double inflation) {
+                            double inflation, Candidates* ungrown) {
   const CollisionMesh& mesh = model.mesh;
   const PrimitiveBoxes now = primitive_boxes(mesh, x0, x1, inflation);
   const int nb = int(model.bodies.size());
@@ -313,10 +324,15 @@ Candidates BroadPhase::find(const Model& model, const Eigen::MatrixX3d& x0, cons
     return it->version_a == m_version[a] && it->version_b == m_version[b] ? &*it : nullptr;
   };
   std::vector<char> refreshed(pairs.size(), 0);
+  /// A chunk's pairs: those of the grown boxes, and those of the boxes before growth.
+  struct Found {
+    Candidates grown, ungrown;
+  };
   Candidates all;
-  in_ordered_chunks<Candidates>(
+  if (ungrown) *ungrown = {};
+  in_ordered_chunks<Found>(
       pairs.size(), 8,
-      [&](std::size_t k, Candidates& out) {
+      [&](std::size_t k, Found& out) {
         const auto [a, b] = pairs[k];
         PairCandidates& p = next[k];
         if (PairCandidates* old = remembered(a, b)) {
@@ -326,10 +342,15 @@ Candidates BroadPhase::find(const Model& model, const Eigen::MatrixX3d& x0, cons
           primitive_pairs(model, reference, m_body, a, b, p.pairs);
           refreshed[k] = 1;
         }
-        keep_overlapping(p.pairs.vertex_face, now.vertex, now.face, out.vertex_face);
-        keep_overlapping(p.pairs.edge_edge, now.edge, now.edge, out.edge_edge);
+        keep_overlapping(p.pairs.vertex_face, now.vertex, now.face, out.grown.vertex_face,
+                         ungrown ? &out.ungrown.vertex_face : nullptr, inflation);
+        keep_overlapping(p.pairs.edge_edge, now.edge, now.edge, out.grown.edge_edge,
+                         ungrown ? &out.ungrown.edge_edge : nullptr, inflation);
       },
-      [&](const Candidates& part) { all.append(part); });
+      [&](const Found& part) {
+        all.append(part.grown);
+        if (ungrown) ungrown->append(part.ungrown);
+      });
   m_vertex = std::move(reference.vertex);
   m_face = std::move(reference.face);
   m_edge = std::move(reference.edge);

@@ -58,8 +58,11 @@ class BroadPhase {
   /// `margin` (m): how far a body may move beyond the boxes of the call that last found its
   /// pairs before they are found again.
   explicit BroadPhase(double margin) : m_margin(margin) {}
-  /// The candidates broad_phase(model, x0, x1, inflation) finds, as a set.
-  Candidates find(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, double inflation);
+  /// The candidates broad_phase(model, x0, x1, inflation) finds, as a set. With `ungrown`, also
+  /// those of broad_phase(model, x0, x1, 0) into it (and a few pairs whose boxes miss by less
+  /// than 1e-9 · inflation), from the same pass.
+  Candidates find(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, double inflation,
+                  Candidates* ungrown = nullptr);
   /// Body pairs of the last find() whose primitive pairs were found again (the others came from memory).
   std::size_t refreshed_pairs() const { return m_refreshed; }
   /// Body pairs of the last find().

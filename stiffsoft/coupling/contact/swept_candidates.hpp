@@ -27,14 +27,15 @@ class SweptCandidates {
   bool covers(const Eigen::MatrixX3d& x) const;
   /// Every candidate (a superset of the proximity pairs of a covered configuration).
   const Candidates& all() const { return m_all; }
-  /// The candidates whose swept boxes overlap without any growth: exactly what
-  /// broad_phase(model, x0, x1, 0) finds, for the CCD of the segment.
-  Candidates for_ccd(const Model& model) const;
+  /// The candidates whose swept boxes overlap without any growth, for the CCD of the segment:
+  /// what broad_phase(model, x0, x1, 0) finds, found in the same pass as all() (BroadPhase::find).
+  const Candidates& for_ccd() const { return m_ccd; }
 
  private:
-  /// Per-vertex swept box (no growth), vertex by vertex (a candidate reads its vertices' rows).
+  /// Per-vertex swept box (no growth), for covers().
   Eigen::Array<double, Eigen::Dynamic, 3, Eigen::RowMajor> m_lo, m_hi;
   double m_slack;              ///< allowed distance of a covered configuration from the swept boxes (m)
+  Candidates m_ccd;            ///< for_ccd(), filled by the broad phase that fills m_all
   Candidates m_all;
 };
 

@@ -116,7 +116,7 @@ double BarrierTerm::max_step(const Configuration& c, const Eigen::VectorXd&, con
   const Eigen::MatrixX3d x1 = c.x + dx;
   // One broad phase for the CCD and every line-search trial of this direction (update()).
   m_swept.emplace(m_model, c.x, x1, 0.5 * m_settings.dhat, 0.01 * m_settings.dhat, m_broad_phase);
-  const Candidates candidates = m_swept->for_ccd(m_model);
+  const Candidates& candidates = m_swept->for_ccd();
   const CollisionMesh& mesh = m_model.mesh;
   const PointRows x0_rows = c.x, x1_rows = x1;  // each query reads its points from 8 places, not 24
   const auto row = [](const PointRows& m, int i) -> Eigen::Vector3d { return m.row(i).transpose(); };
