@@ -231,6 +231,25 @@ void BlockCholesky::analyze(const BlockUpper& H) {
     }
   m_input_at.push_back(input);
   m_input.assign(input, 0.0);
+  std::vector<char> filled_diagonal(nb, 0), filled_entry(m_entries.size(), 0);
+  for (const Target& t : m_target) {
+    if (t.kind == Target::Diagonal) {
+      filled_diagonal[t.column] = 1;
+      continue;
+    }
+    const auto begin = m_entries.begin() + m_column_offsets[t.column];
+    filled_entry[std::size_t(std::find_if(begin, m_entries.begin() + m_column_offsets[t.column + 1],
+                                          [&](const Entry& e) { return e.at == t.at; }) - m_entries.begin())] = 1;
+  }
+  m_unfilled_offsets.assign(1, 0);
+  m_unfilled.clear();
+  for (int j = 0; j < nb; ++j) {
+    const std::size_t s = m_columns[j].size;
+    if (!filled_diagonal[j]) m_unfilled.push_back({m_columns[j].diagonal, s * s});
+    for (int e = m_column_offsets[j]; e < m_column_offsets[j + 1]; ++e)
+      if (!filled_entry[e]) m_unfilled.push_back({m_entries[e].at, std::size_t(m_columns[m_entries[e].row].size) * s});
+    m_unfilled_offsets.push_back(int(m_unfilled.size()));
+  }
   m_factorised = BlockUpper{H.offsets, H.column_starts, H.rows, {}};
   for (std::size_t k = 0; k + 1 < m_input_at.size(); ++k) m_factorised.values.push_back(m_input.data() + m_input_at[k]);
   m_kept = false;
@@ -295,12 +314,14 @@ bool BlockCholesky::factorize(const BlockUpper& H, double shift) {
     for (int j : m_by_level)  // a column's descendants come before it
       for (int u = m_update_offsets[j]; u < m_update_offsets[j + 1] && !redo[j]; ++u) redo[j] = redo[m_updates[u].column];
   }
+  // A recomputed column starts from H's blocks, copied below over the old ones, and zero
+  // elsewhere (L_jj's upper triangle, which no step reads, holds the last factor's zeros).
   m_refactored = 0;
   for (std::size_t j = 0; j < nb; ++j) {
     if (!redo[j]) continue;
     ++m_refactored;
-    const std::size_t end = j + 1 < nb ? m_columns[j + 1].diagonal : m_pool.size();
-    std::fill(m_pool.begin() + m_columns[j].diagonal, m_pool.begin() + end, 0.0);
+    for (int u = m_unfilled_offsets[j]; u < m_unfilled_offsets[j + 1]; ++u)
+      std::fill_n(m_pool.begin() + m_unfilled[u].at, m_unfilled[u].count, 0.0);
   }
   for (int J = 0; J < H.num_blocks(); ++J)
     for (int k = H.column_starts[J]; k < H.column_starts[J + 1]; ++k) {

@@ -96,6 +96,13 @@ class BlockCholesky {
     std::size_t at;
   };
   std::vector<Target> m_target;                  // per stored block of H
+  /// A range of the pool that no block of H fills: a block of fill-in (or a diagonal block H
+  /// lacks), zeroed before its column is computed again; the others are overwritten by H's.
+  struct Unfilled {
+    std::size_t at, count;
+  };
+  std::vector<int> m_unfilled_offsets;           // m_unfilled[m_unfilled_offsets[j] …): column j's
+  std::vector<Unfilled> m_unfilled;
   std::vector<std::size_t> m_input_at;           // per stored block of H: where m_input holds it
   std::vector<double> m_input;                   // H's blocks at the last successful factorisation
   BlockUpper m_factorised;                       // H's pattern, its values in m_input
