@@ -314,8 +314,9 @@ bool BlockCholesky::factorize(const BlockUpper& H, double shift) {
     for (int j : m_by_level)  // a column's descendants come before it
       for (int u = m_update_offsets[j]; u < m_update_offsets[j + 1] && !redo[j]; ++u) redo[j] = redo[m_updates[u].column];
   }
-  // A recomputed column starts from H's blocks, copied below over the old ones, and zero
-  // elsewhere (L_jj's upper triangle, which no step reads, holds the last factor's zeros).
+  // A recomputed column starts from H's blocks, copied below over the old ones, and zero in its
+  // fill-in. L_jj's upper triangle keeps what the last factorisation left there: nothing uses
+  // it before the inversion sets it to zero.
   m_refactored = 0;
   for (std::size_t j = 0; j < nb; ++j) {
     if (!redo[j]) continue;
