@@ -33,41 +33,42 @@ Matrix9d StableNeoHookean::dPdF_projected(const Eigen::Matrix3d& F) const {
   // F = U Σ Vᵀ, ∂P/∂F has the eigenvectors vec(U E Vᵀ) for the twist and flip of each pair of
   // axes (i, j), E = (eᵢeⱼᵀ ∓ eⱼeᵢᵀ)/√2 with eigenvalues μ̂ ± λ̂ (J − α) σ_k (k the third axis),
   // and three in the span of the scalings U eᵢeᵢᵀ Vᵀ, the eigenvectors of the 3×3 ∂²ψ/∂σ².
-  // Summing the positive ones gives the clamped projection without a 9×9 decomposition.
+  // The clamped projection is ∂P/∂F less its negative modes, without a 9×9 decomposition: near
+  // rest only twists can be negative (μ̂ − μ̂ σ_k there), and the scalings' block is positive
+  // definite at every moderate strain.
+  Matrix9d H = dPdF(F);
   const RotationVariantSvd svd = rotation_variant_svd(F);
   const Eigen::Vector3d& s = svd.sigma;
   const double c = m_lambda * (F.determinant() - m_alpha);
-  Matrix9d H = Matrix9d::Zero();
-  const auto add = [&](double eigenvalue, const Eigen::Matrix3d& D) {
-    if (eigenvalue <= 0) return;
+  // D is an expression, formed only for a negative eigenvalue.
+  const auto remove = [&](double eigenvalue, const auto& D) {
+    if (eigenvalue >= 0) return;
     const Vector9d d = vec(D);
-    H.noalias() += eigenvalue * d * d.transpose();
+    H.noalias() -= eigenvalue * d * d.transpose();
   };
   constexpr int pairs[3][3] = {{0, 1, 2}, {1, 2, 0}, {0, 2, 1}};
   const double r = 1 / std::sqrt(2.0);
   for (const auto& [i, j, k] : pairs) {
-    const Eigen::Matrix3d a = r * svd.U.col(i) * svd.V.col(j).transpose();
-    const Eigen::Matrix3d b = r * svd.U.col(j) * svd.V.col(i).transpose();
-    add(m_mu + c * s(k), a - b);  // twist
-    add(m_mu - c * s(k), a + b);  // flip
+    const auto a = r * svd.U.col(i) * svd.V.col(j).transpose(), b = r * svd.U.col(j) * svd.V.col(i).transpose();
+    remove(m_mu + c * s(k), a - b);  // twist
+    remove(m_mu - c * s(k), a + b);  // flip
   }
   // ∂²ψ/∂σ² = μ̂ I + λ̂ ∇J ∇Jᵀ + λ̂ (J − α) ∇²J with J = σ₀σ₁σ₂, acting on the scalings
-  // S = [vec(u₀v₀ᵀ) vec(u₁v₁ᵀ) vec(u₂v₂ᵀ)]: their block is S A₊ Sᵀ, A₊ the clamped A.
+  // S = [vec(u₀v₀ᵀ) vec(u₁v₁ᵀ) vec(u₂v₂ᵀ)]: their block is S A Sᵀ, and S A₋ Sᵀ its negative part.
   const Eigen::Vector3d grad_J(s(1) * s(2), s(0) * s(2), s(0) * s(1));
   Eigen::Matrix3d A = m_mu * Eigen::Matrix3d::Identity() + m_lambda * grad_J * grad_J.transpose();
   for (const auto& [i, j, k] : pairs) {
     A(i, j) += c * s(k);
     A(j, i) += c * s(k);
   }
-  // Positive definite (Sylvester's leading minors), as at every moderate strain: A₊ = A.
-  const bool definite = A(0, 0) > 0 && A(0, 0) * A(1, 1) - A(0, 1) * A(0, 1) > 0 && A.determinant() > 0;
-  if (!definite) {
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(A);
-    A = es.eigenvectors() * es.eigenvalues().cwiseMax(0.0).asDiagonal() * es.eigenvectors().transpose();
-  }
+  // Positive definite (Sylvester's leading minors), as at every moderate strain: nothing to remove.
+  if (A(0, 0) > 0 && A(0, 0) * A(1, 1) - A(0, 1) * A(0, 1) > 0 && A.determinant() > 0) return H;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(A);
+  const Eigen::Matrix3d negative =
+      es.eigenvectors() * es.eigenvalues().cwiseMin(0.0).asDiagonal() * es.eigenvectors().transpose();
   Eigen::Matrix<double, 9, 3> S;
   for (int i = 0; i < 3; ++i) S.col(i) = vec(svd.U.col(i) * svd.V.col(i).transpose());
-  H.noalias() += (S * A).lazyProduct(S.transpose());  // coefficient-wise: 9×3 by 3×9 is too small for GEMM
+  H.noalias() -= (S * negative).lazyProduct(S.transpose());  // coefficient-wise: 9×3 by 3×9 is too small for GEMM
   return H;
 }
 
