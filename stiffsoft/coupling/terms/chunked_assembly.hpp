@@ -29,10 +29,15 @@ void assemble_in_chunks(std::size_t n, const Compute& compute, const Add& add) {
   // chunks in order, so chunk c + tokens enters only after chunk c has left its buffer.
   const std::size_t chunks = (n + kChunk - 1) / kChunk;
   const std::size_t tokens = std::min(chunks, std::size_t(2 * tbb::this_task_arena::max_concurrency()));
-  // Each buffer default-constructed, not copied from one: a Local may leave its values
-  // uninitialised, and copying 110 KiB per buffer was 3 % of a Newton iteration on medium.
-  std::vector<std::vector<Local>> buffers(tokens);
-  for (std::vector<Local>& buffer : buffers) buffer.resize(std::min(n, kChunk));
+  // Buffers of default-initialised entries: value-initialising an aggregate Local zeroes it
+  // (37 KiB per buffer and call for the elements' Hessians), and copying one buffer into the
+  // others cost 3 % of a Newton iteration on medium; compute() fills every entry it reads.
+  struct Entry {
+    Local value;
+    Entry() {}
+  };
+  std::vector<std::vector<Entry>> buffers(tokens);
+  for (std::vector<Entry>& buffer : buffers) buffer.resize(std::min(n, kChunk));
   std::size_t next = 0;
   tbb::parallel_pipeline(
       tokens,
@@ -43,17 +48,17 @@ void assemble_in_chunks(std::size_t n, const Compute& compute, const Add& add) {
                                           }) &
           tbb::make_filter<std::size_t, std::size_t>(tbb::filter_mode::parallel,
                                                      [&](std::size_t c) {
-                                                       std::vector<Local>& local = buffers[c % tokens];
+                                                       std::vector<Entry>& local = buffers[c % tokens];
                                                        const std::size_t begin = c * kChunk;
                                                        const std::size_t end = std::min(n, begin + kChunk);
-                                                       for (std::size_t k = begin; k < end; ++k) compute(k, local[k - begin]);
+                                                       for (std::size_t k = begin; k < end; ++k) compute(k, local[k - begin].value);
                                                        return c;
                                                      }) &
           tbb::make_filter<std::size_t, void>(tbb::filter_mode::serial_in_order, [&](std::size_t c) {
-            const std::vector<Local>& local = buffers[c % tokens];
+            const std::vector<Entry>& local = buffers[c % tokens];
             const std::size_t begin = c * kChunk;
             const std::size_t end = std::min(n, begin + kChunk);
-            for (std::size_t k = begin; k < end; ++k) add(k, local[k - begin]);
+            for (std::size_t k = begin; k < end; ++k) add(k, local[k - begin].value);
           }));
 }
 
