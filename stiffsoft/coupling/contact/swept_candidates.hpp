@@ -32,8 +32,8 @@ class SweptCandidates {
   const Candidates& for_ccd() const { return m_ccd; }
 
  private:
-  /// Per-vertex swept box (no growth), for covers().
-  Eigen::Array<double, Eigen::Dynamic, 3, Eigen::RowMajor> m_lo, m_hi;
+  /// Per-vertex swept box (no growth), for covers(): stored as x is, column by column.
+  Eigen::ArrayX3d m_lo, m_hi;
   double m_slack;              ///< allowed distance of a covered configuration from the swept boxes (m)
   Candidates m_ccd;            ///< for_ccd(), filled by the broad phase that fills m_all
   Candidates m_all;

@@ -209,10 +209,14 @@ void BlockCholesky::analyze(const BlockUpper& H) {
   std::vector<int> next(m_level_offsets.begin(), m_level_offsets.end() - 1);
   for (int j = 0; j < nb; ++j) m_by_level[next[height[j]]++] = j;
 
-  // Where each stored block of H goes, and where its numbers are kept between factorisations.
+  // Where each stored block of H goes, and where its numbers are kept between factorisations;
+  // which blocks of L no block of H fills.
+  std::vector<char> filled_diagonal(nb, 0), filled_entry(m_entries.size(), 0);
   const auto entry_at = [&](int row, int column) {
     const auto begin = m_entries.begin() + m_column_offsets[column], end = m_entries.begin() + m_column_offsets[column + 1];
-    return std::lower_bound(begin, end, row, [](const Entry& e, int r) { return e.row < r; })->at;
+    const auto e = std::lower_bound(begin, end, row, [](const Entry& e, int r) { return e.row < r; });
+    filled_entry[std::size_t(e - m_entries.begin())] = 1;
+    return e->at;
   };
   m_target.clear();
   m_input_at.clear();
@@ -220,27 +224,19 @@ void BlockCholesky::analyze(const BlockUpper& H) {
   for (int J = 0; J < nb; ++J)
     for (int k = H.column_starts[J]; k < H.column_starts[J + 1]; ++k) {
       const int I = H.rows[k], pi = position[I], pj = position[J];
-      if (pi == pj)
+      if (pi == pj) {
         m_target.push_back({Target::Diagonal, pj, m_columns[pj].diagonal});
-      else if (pi > pj)
+        filled_diagonal[pj] = 1;
+      } else if (pi > pj) {
         m_target.push_back({Target::AsIs, pj, entry_at(pi, pj)});
-      else
+      } else {
         m_target.push_back({Target::Transposed, pi, entry_at(pj, pi)});
+      }
       m_input_at.push_back(input);
       input += std::size_t(sizes[I]) * sizes[J];
     }
   m_input_at.push_back(input);
   m_input.assign(input, 0.0);
-  std::vector<char> filled_diagonal(nb, 0), filled_entry(m_entries.size(), 0);
-  for (const Target& t : m_target) {
-    if (t.kind == Target::Diagonal) {
-      filled_diagonal[t.column] = 1;
-      continue;
-    }
-    const auto begin = m_entries.begin() + m_column_offsets[t.column];
-    filled_entry[std::size_t(std::find_if(begin, m_entries.begin() + m_column_offsets[t.column + 1],
-                                          [&](const Entry& e) { return e.at == t.at; }) - m_entries.begin())] = 1;
-  }
   m_unfilled_offsets.assign(1, 0);
   m_unfilled.clear();
   for (int j = 0; j < nb; ++j) {
