@@ -69,7 +69,22 @@ void BlockHessian::add(int i, int j, const Eigen::Ref<const Eigen::MatrixXd>& H)
 }
 
 void BlockHessian::add_upper(int i, int j, const double* values) {
-  const std::size_t at = i == j ? m_diagonal[i] : live_slot(i, j).at;  // first: creating a slot may move the pool
+  if (i == j && m_blocks[i].size == 12) {  // an affine body's: by strips of four columns down to the diagonal
+    double* D = m_pool.data() + m_diagonal[i];
+    const auto strip = [&]<int C>() {
+      using Strip = Eigen::Matrix<double, 4 * C + 4, 4>;
+      Eigen::Map<Strip, 0, Eigen::OuterStride<12>>(D + 48 * C) += Eigen::Map<const Strip, 0, Eigen::OuterStride<12>>(values + 48 * C);
+    };
+    strip.template operator()<0>();
+    strip.template operator()<1>();
+    strip.template operator()<2>();
+    return;
+  }
+  if (i == j) {
+    block_at(m_diagonal[i], i, i).triangularView<Eigen::Upper>() += ConstBlock(values, m_blocks[i].size, m_blocks[i].size);
+    return;
+  }
+  const std::size_t at = live_slot(i, j).at;  // first: creating a slot may move the pool
   if (m_blocks[i].size == 12 && m_blocks[j].size == 12) {  // two affine bodies: fixed-size code
     Eigen::Map<Eigen::Matrix<double, 12, 12>>(m_pool.data() + at) += Eigen::Map<const Eigen::Matrix<double, 12, 12>>(values);
     return;
@@ -143,7 +158,7 @@ Eigen::VectorXd BlockHessian::multiply(const Eigen::VectorXd& x) const {
   Eigen::VectorXd y = Eigen::VectorXd::Zero(x.size());
   for (int b = 0; b < n; ++b) {
     const DofBlock& d = m_blocks[b];
-    y.segment(d.offset, d.size) += block_at(m_diagonal[b], b, b) * x.segment(d.offset, d.size);
+    y.segment(d.offset, d.size) += block_at(m_diagonal[b], b, b).selfadjointView<Eigen::Upper>() * x.segment(d.offset, d.size);
   }
   for (const Slot& s : m_slots) {
     if (!live(s)) continue;

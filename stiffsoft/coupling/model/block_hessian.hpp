@@ -14,7 +14,8 @@
 namespace stiffsoft {
 
 /// Symmetric block-sparse matrix over variable-size DOF blocks; only blocks (i, j) with i ≤ j
-/// are stored, each dense and column-major in one pool.
+/// are stored, each dense and column-major in one pool. Of a diagonal block only the upper
+/// triangle is the matrix (as BlockUpper reads it): its lower one may hold anything.
 ///
 /// Meant to be reused: clear() starts the next assembly but keeps the storage of every block
 /// seen so far, so that assembling the same pattern again allocates nothing and finds each
@@ -29,7 +30,8 @@ class BlockHessian {
   void clear();
   /// Adds H (size_i × size_j) to block (i, j); for i > j the transpose is added to (j, i).
   void add(int i, int j, const Eigen::Ref<const Eigen::MatrixXd>& H);
-  /// Adds the size_i × size_j column-major block stored at `values` to block (i, j), i ≤ j.
+  /// Adds the size_i × size_j column-major block stored at `values` to block (i, j), i ≤ j; of
+  /// a diagonal block (i = j) only the upper triangle is read.
   void add_upper(int i, int j, const double* values);
   /// Zeroes every off-diagonal block in the row or column of a block with held[b] ≠ 0 (DOFs
   /// held on a prescribed motion): those blocks then decouple from the rest. The sparsity

@@ -17,7 +17,8 @@
 namespace stiffsoft {
 
 /// Jᵀ H_x J of one stencil, split into the dense blocks it adds to the global Hessian: made
-/// where the stencil's Hessian is (in parallel, chunked_assembly.hpp), added serially.
+/// where the stencil's Hessian is (in parallel, chunked_assembly.hpp), added serially. Of a
+/// diagonal block (row = column) only the upper triangle counts, as in BlockHessian.
 struct StencilHessian {
   /// Entries of the largest case: a stencil spans at most two affine bodies, whose blocks
   /// (1,1), (1,2), (2,2) are 12×12 each.
@@ -49,7 +50,8 @@ struct StencilJacobian {
   void block_hessians(const Eigen::Matrix<double, 12, 12>& H_x, StencilHessian& out) const;
   /// Jᵀ (Bᵀ C B) J by pairs of DOF blocks, into `out`, for a Hessian of rank ≤ R given by its
   /// factors (B: R×12 over the packed vertices, C: R×R symmetric): (B J)ᵀ C (B J), formed
-  /// without the 12×12 product. Equal to block_hessians(Bᵀ C B, out) to round-off.
+  /// without the 12×12 product, and of an affine body's diagonal block only the upper
+  /// triangle. Equal to block_hessians(Bᵀ C B, out) to round-off where both count.
   /// Instantiated for R = 1 … 5 (friction's 2; the barrier's projection, C = diag(λ)).
   template <int R>
   void low_rank_block_hessians(const Eigen::Matrix<double, R, 12>& B, const Eigen::Matrix<double, R, R>& C,
