@@ -50,6 +50,42 @@ using Block = Eigen::Map<Eigen::Matrix<double, S, S>>;
 template <int S>
 using Segment = Eigen::Map<Eigen::Matrix<double, S, 1>>;
 
+/// D −= L Lᵀ on and below D's diagonal (what the pivot's factorisation reads). At 12 × 12, by
+/// strips of four columns from the diagonal down: 96 of the 144 entries.
+template <int S>
+void subtract_lower_gram(Block<S>& D, const Block<S>& L) {
+  if constexpr (S == 12) {
+    const auto strip = [&]<int C>() {
+      D.template block<12 - 4 * C, 4>(4 * C, 4 * C) -=
+          L.template middleRows<12 - 4 * C>(4 * C).lazyProduct(L.template middleRows<4>(4 * C).transpose());
+    };
+    strip.template operator()<0>();
+    strip.template operator()<1>();
+    strip.template operator()<2>();
+  } else {
+    D -= L.lazyProduct(L.transpose());
+  }
+}
+
+/// B ← B Xᵀ for a lower-triangular X (B is si × s). At 12 × 12, each strip of four columns of
+/// the result reads only the columns of B that X's rows reach: 96 of the 144 products.
+template <int S>
+void multiply_by_lower_transpose(Block<S>& B, const Block<S>& X) {
+  if constexpr (S == 12) {
+    Eigen::Matrix<double, 12, 12> result;
+    const auto strip = [&]<int C>() {
+      result.template middleCols<4>(4 * C) =
+          B.template leftCols<4 * C + 4>().lazyProduct(X.template block<4, 4 * C + 4>(4 * C, 0).transpose());
+    };
+    strip.template operator()<0>();
+    strip.template operator()<1>();
+    strip.template operator()<2>();
+    B = result;
+  } else {
+    B = Eigen::Matrix<double, S, S>(B.lazyProduct(X.transpose()));
+  }
+}
+
 /// The graph of the DOF blocks: adjacent[I] holds every block J ≠ I that H couples to I.
 std::vector<std::vector<int>> block_graph(const BlockUpper& H) {
   std::vector<std::vector<int>> adjacent(H.num_blocks());
@@ -266,7 +302,7 @@ bool BlockCholesky::factor_column(int j, std::vector<int>& slot) {
     const auto [k, p] = m_updates[u];
     const int sk = m_columns[k].size, first = m_column_offsets[k];
     const Block<S> Ljk(pool + m_entries[first + p].at, s, sk);
-    D -= Ljk.lazyProduct(Ljk.transpose());
+    subtract_lower_gram<S>(D, Ljk);
     for (int q = first + p + 1; q < m_column_offsets[k + 1]; ++q) {
       const Entry& e = m_entries[q];
       const int si = m_columns[e.row].size;
@@ -278,7 +314,7 @@ bool BlockCholesky::factor_column(int j, std::vector<int>& slot) {
   if (!invert_cholesky_factor<S>(D, s)) return false;
   for (int e = begin; e < end; ++e) {
     Block<S> B(pool + m_entries[e].at, m_columns[m_entries[e].row].size, s);
-    B = Eigen::Matrix<double, S, S>(B.lazyProduct(D.transpose()));  // L_ij = B_i L_jj⁻ᵀ
+    multiply_by_lower_transpose<S>(B, D);  // L_ij = B_i L_jj⁻ᵀ
   }
   return true;
 }
