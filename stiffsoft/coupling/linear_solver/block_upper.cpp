@@ -1,6 +1,10 @@
 #include <stiffsoft/coupling/linear_solver/block_upper.hpp>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
+#include <array>
 #include <stdexcept>
 #include <string>
 
@@ -8,12 +12,14 @@ namespace stiffsoft {
 
 namespace {
 
-/// y_i += A x_j and, off the diagonal, y_j += Aᵀ x_i for one stored block (a diagonal one with
-/// `shift` added to its diagonal first); S fixes both sizes at compile time when they are equal
-/// and known (Eigen::Dynamic otherwise).
+/// One stored block's product into the block of y that `target` names: y_i += A x_j for the
+/// block's row i, y_j += Aᵀ x_i for its column j, or, for a diagonal block, y_j += A x_j over its
+/// upper triangle with `shift` added to its diagonal first. S fixes both sizes at compile time
+/// when they are equal and known (Eigen::Dynamic otherwise).
+enum class Part { Row, Column };
 template <int S>
-void multiply_block(const double* values, int i, int j, const BlockUpper& H, double shift, const Eigen::VectorXd& x,
-                    Eigen::VectorXd& y) {
+void multiply_block(const double* values, int i, int j, Part target, const BlockUpper& H, double shift,
+                    const Eigen::VectorXd& x, Eigen::VectorXd& y) {
   const int si = H.size(i), sj = H.size(j);
   const Eigen::Map<const Eigen::Matrix<double, S, S>> A(values, si, sj);
   auto xi = x.segment<S>(H.offsets[i], si), xj = x.segment<S>(H.offsets[j], sj);
@@ -21,14 +27,13 @@ void multiply_block(const double* values, int i, int j, const BlockUpper& H, dou
     Eigen::Matrix<double, S, S> D = A;
     D.diagonal().array() += shift;
     y.segment<S>(H.offsets[j], sj).noalias() += D.template selfadjointView<Eigen::Upper>() * xj;
-    return;
-  }
-  if (i == j) {
+  } else if (i == j) {
     y.segment<S>(H.offsets[j], sj).noalias() += A.template selfadjointView<Eigen::Upper>() * xj;
-    return;
+  } else if (target == Part::Row) {
+    y.segment<S>(H.offsets[i], si).noalias() += A * xj;
+  } else {
+    y.segment<S>(H.offsets[j], sj).noalias() += A.transpose() * xi;
   }
-  y.segment<S>(H.offsets[i], si).noalias() += A * xj;
-  y.segment<S>(H.offsets[j], sj).noalias() += A.transpose() * xi;
 }
 
 }  // namespace
@@ -79,17 +84,37 @@ Eigen::SparseMatrix<double> BlockUpper::compressed(double shift) const {
 }
 
 Eigen::VectorXd BlockUpper::multiply(const Eigen::VectorXd& x, double shift) const {
+  const int n = num_blocks();
+  // Each block row's off-diagonal blocks (k, column), by ascending column.
+  std::vector<int> row_starts(std::size_t(n) + 1, 0);
+  std::vector<std::array<int, 2>> by_row(rows.size());
+  for (int j = 0; j < n; ++j)
+    for (int k = column_starts[j]; k < column_starts[j + 1]; ++k)
+      if (rows[k] != j) ++row_starts[std::size_t(rows[k]) + 1];
+  for (int i = 0; i < n; ++i) row_starts[std::size_t(i) + 1] += row_starts[std::size_t(i)];
+  std::vector<int> next(row_starts.begin(), row_starts.end() - 1);
+  for (int j = 0; j < n; ++j)
+    for (int k = column_starts[j]; k < column_starts[j + 1]; ++k)
+      if (rows[k] != j) by_row[std::size_t(next[std::size_t(rows[k])]++)] = {k, j};
+  const auto add = [&](int k, int j, Part target, Eigen::VectorXd& y) {
+    const int i = rows[k];
+    if (size(i) == 12 && size(j) == 12)
+      multiply_block<12>(values[k], i, j, target, *this, shift, x, y);
+    else if (size(i) == 3 && size(j) == 3)
+      multiply_block<3>(values[k], i, j, target, *this, shift, x, y);
+    else
+      multiply_block<Eigen::Dynamic>(values[k], i, j, target, *this, shift, x, y);
+  };
+  // Block m of y in parallel, each summed in the order of a serial sweep over the columns:
+  // column m's blocks (the diagonal one last), then row m's blocks in later columns.
   Eigen::VectorXd y = Eigen::VectorXd::Zero(x.size());
-  for (int j = 0; j < num_blocks(); ++j)
-    for (int k = column_starts[j]; k < column_starts[j + 1]; ++k) {
-      const int i = rows[k];
-      if (size(i) == 12 && size(j) == 12)
-        multiply_block<12>(values[k], i, j, *this, shift, x, y);
-      else if (size(i) == 3 && size(j) == 3)
-        multiply_block<3>(values[k], i, j, *this, shift, x, y);
-      else
-        multiply_block<Eigen::Dynamic>(values[k], i, j, *this, shift, x, y);
+  tbb::parallel_for(tbb::blocked_range<int>(0, n, 32), [&](const tbb::blocked_range<int>& r) {
+    for (int m = r.begin(); m < r.end(); ++m) {
+      for (int k = column_starts[m]; k < column_starts[m + 1]; ++k) add(k, m, Part::Column, y);
+      for (int e = row_starts[std::size_t(m)]; e < row_starts[std::size_t(m) + 1]; ++e)
+        add(by_row[std::size_t(e)][0], by_row[std::size_t(e)][1], Part::Row, y);
     }
+  });
   return y;
 }
 

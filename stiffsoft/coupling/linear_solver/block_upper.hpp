@@ -35,7 +35,8 @@ struct BlockUpper {
   /// stored block kept (zeros included), so that its pattern is the blocks'.
   Eigen::SparseMatrix<double> compressed(double shift = 0) const;
   /// y = (H + shift·I) x for the whole symmetric H, the shift added to the diagonal blocks'
-  /// numbers first (so that it matches compressed(shift)'s product to the last bit).
+  /// numbers first (so that it matches compressed(shift)'s product to the last bit). Blocks of
+  /// y are summed in parallel, each in a fixed order: the result does not depend on the threads.
   Eigen::VectorXd multiply(const Eigen::VectorXd& x, double shift = 0) const;
 };
 

@@ -1,5 +1,8 @@
 #include <stiffsoft/coupling/model/model.hpp>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 
 namespace stiffsoft {
@@ -29,9 +32,20 @@ Eigen::MatrixX3d Model::node_positions(const Eigen::VectorXd& q) const {
   return x;
 }
 
+namespace {
+/// Calls f(b) for every body, in parallel by eight or more: each body writes only its own
+/// vertices' rows.
+template <class F>
+void for_each_body(int bodies, F&& f) {
+  tbb::parallel_for(tbb::blocked_range<int>(0, bodies, 8), [&](const tbb::blocked_range<int>& r) {
+    for (int b = r.begin(); b < r.end(); ++b) f(b);
+  });
+}
+}  // namespace
+
 Eigen::MatrixX3d Model::surface(const Eigen::VectorXd& q) const {
   Eigen::MatrixX3d x(mesh.x_bar.rows(), 3);
-  for (int b = 0; b < int(bodies.size()); ++b) {
+  for_each_body(int(bodies.size()), [&](int b) {
     const BodyModel& body = bodies[b];
     if (body.representation == Representation::Soft) {
       for (int v = body.vertex_begin; v < body.vertex_end; ++v) {
@@ -39,7 +53,7 @@ Eigen::MatrixX3d Model::surface(const Eigen::VectorXd& q) const {
         x.row(v) = nodes.dof[node] < 0 ? Eigen::RowVector3d(nodes.X.row(node))
                                        : Eigen::RowVector3d(q.segment<3>(nodes.dof[node]).transpose());
       }
-      continue;
+      return;
     }
     const abd::Vector12d qb = body_q(b, q);
     const Eigen::Matrix3d A = abd::affine_matrix(qb);
@@ -47,28 +61,29 @@ Eigen::MatrixX3d Model::surface(const Eigen::VectorXd& q) const {
     const int n = body.vertex_end - body.vertex_begin;
     x.middleRows(body.vertex_begin, n) =
         (mesh.x_bar.middleRows(body.vertex_begin, n) * A.transpose()).rowwise() + p;
-  }
+  });
   return x;
 }
 
 Eigen::MatrixX3d Model::surface_step(const Eigen::VectorXd& dq) const {
   Eigen::MatrixX3d dx = Eigen::MatrixX3d::Zero(mesh.x_bar.rows(), 3);
-  for (const BodyModel& body : bodies) {
+  for_each_body(int(bodies.size()), [&](int b) {
+    const BodyModel& body = bodies[b];
     if (body.representation == Representation::Soft) {
       for (int v = body.vertex_begin; v < body.vertex_end; ++v) {
         const int dof = nodes.dof[mesh.vertex_node[v]];
         if (dof >= 0) dx.row(v) = dq.segment<3>(dof).transpose();
       }
-      continue;
+      return;
     }
-    if (body.dof < 0) continue;
+    if (body.dof < 0) return;
     const abd::Vector12d d = dq.segment<12>(body.dof);
     const Eigen::Matrix3d dA = abd::affine_matrix(d);
     const int n = body.vertex_end - body.vertex_begin;
     dx.middleRows(body.vertex_begin, n) =
         (mesh.x_bar.middleRows(body.vertex_begin, n) * dA.transpose()).rowwise() +
         abd::translation(d).transpose();
-  }
+  });
   return dx;
 }
 
