@@ -439,7 +439,7 @@ bool PetscSolver::factorize(const Eigen::SparseMatrix<double>& upper) {
   }
   STIFFSOFT_PETSC(MatAssemblyBegin(m.A, MAT_FINAL_ASSEMBLY));
   STIFFSOFT_PETSC(MatAssemblyEnd(m.A, MAT_FINAL_ASSEMBLY));
-  if (m.settings.fallback == KrylovFallback::Cholmod) m.upper = upper;
+  if (m.settings.fallback == KrylovFallback::Cholmod && &upper != &m.upper) m.upper = upper;
 
   bool indefinite = false;
   if (m.shell) {
@@ -476,6 +476,13 @@ bool PetscSolver::factorize(const Eigen::SparseMatrix<double>& upper) {
   }
   m_report.setup_seconds = seconds_since(start);
   return ok;
+}
+
+bool PetscSolver::factorize_blocks(const BlockUpper& H, double shift) {
+  if (m_impl->settings.fallback != KrylovFallback::Cholmod) return factorize(H.compressed(shift));
+  Eigen::SparseMatrix<double> upper = H.compressed(shift);
+  m_impl->upper.swap(upper);  // Eigen 3.4's sparse matrices copy on assignment, even from a temporary
+  return factorize(m_impl->upper);
 }
 
 Eigen::VectorXd PetscSolver::solve(const Eigen::VectorXd& rhs) {

@@ -61,6 +61,8 @@ class PetscSolver final : public LinearSolver {
   /// preconditioner failed (block-Jacobi block or ICC pivot not positive) and the fallback,
   /// if any, found H not positive definite either.
   bool factorize(const Eigen::SparseMatrix<double>& upper) override;
+  /// See LinearSolver; the compressed H is built where the fallback keeps it, not copied there.
+  bool factorize_blocks(const BlockUpper& H, double shift) override;
   /// See LinearSolver.
   Eigen::VectorXd solve(const Eigen::VectorXd& b) override;
   /// "petsc:KSP:PC" with the types in use (after the options database).
