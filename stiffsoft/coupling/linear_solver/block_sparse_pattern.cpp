@@ -79,15 +79,24 @@ BlockSparsePattern::BlockSparsePattern(const Eigen::SparseMatrix<double>& upper,
   };
   for (int c = 0; c < n; ++c) {
     const int J = c / 3;
+    // A column's rows ascend, so the (up to three) scalars of one block come in a run: each
+    // block's positions are looked up once per run.
+    int run = -1;
+    std::int64_t at = -1, mirror_at = -1;
     for (int k = outer[c]; k < outer[c + 1]; ++k) {
       const int r = inner[k];
       const int I = r / 3;
-      if (owned(I)) m_target[k] = 9 * position(I, J) + 3 * (c % 3) + r % 3;
+      if (I != run) {
+        run = I;
+        at = owned(I) ? position(I, J) : -1;
+        mirror_at = storage == BlockStorage::Full && I != J && owned(J) ? position(J, I) : -1;
+      }
+      if (at >= 0) m_target[k] = 9 * at + 3 * (c % 3) + r % 3;
       if (r == c) continue;
       if (I == J) {
-        if (owned(I)) m_mirror[k] = 9 * position(I, J) + 3 * (r % 3) + c % 3;
-      } else if (storage == BlockStorage::Full && owned(J)) {
-        m_mirror[k] = 9 * position(J, I) + 3 * (r % 3) + c % 3;
+        if (at >= 0) m_mirror[k] = 9 * at + 3 * (r % 3) + c % 3;
+      } else if (mirror_at >= 0) {
+        m_mirror[k] = 9 * mirror_at + 3 * (r % 3) + c % 3;
       }
     }
   }
