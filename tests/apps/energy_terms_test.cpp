@@ -523,13 +523,19 @@ TEST(StencilJacobian, LowRankBlocksEqualTheBlocksOfTheFormedHessian) {
       EXPECT_EQ(low_rank.row[b], formed.row[b]);
       EXPECT_EQ(low_rank.column[b], formed.column[b]);
       const int rows = f.model.blocks[formed.row[b]].size, columns = f.model.blocks[formed.column[b]].size;
-      Eigen::MatrixXd a = Eigen::Map<const Eigen::MatrixXd>(low_rank.values.data() + low_rank.at[b], rows, columns),
-                      e = Eigen::Map<const Eigen::MatrixXd>(formed.values.data() + formed.at[b], rows, columns);
-      if (formed.row[b] == formed.column[b]) {  // a diagonal block counts by its upper triangle
-        a = a.triangularView<Eigen::Upper>();
-        e = e.triangularView<Eigen::Upper>();
+      const Eigen::Map<const Eigen::MatrixXd> a(low_rank.values.data() + low_rank.at[b], rows, columns),
+          e(formed.values.data() + formed.at[b], rows, columns);
+      // A diagonal block counts by its upper triangle: its other entries are not read (nor set).
+      Eigen::MatrixXd difference = Eigen::MatrixXd::Zero(rows, columns), expected = difference;
+      if (formed.row[b] == formed.column[b]) {
+        difference.triangularView<Eigen::Upper>() = a - e;
+        expected.triangularView<Eigen::Upper>() = e;
+      } else {
+        difference = a - e;
+        expected = e;
       }
-      EXPECT_LT((a - e).norm(), 1e-12 * std::max(1.0, e.norm())) << "rank " << R << ", stencil " << stencils << ", block " << b;
+      EXPECT_LT(difference.norm(), 1e-12 * std::max(1.0, expected.norm()))
+          << "rank " << R << ", stencil " << stencils << ", block " << b;
     }
   };
   for (const ContactConstraint& k : f.step.lagged) {

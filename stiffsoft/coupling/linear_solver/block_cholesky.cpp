@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <stiffsoft/coupling/linear_solver/column_strips.hpp>
+
 namespace stiffsoft {
 
 namespace {
@@ -55,13 +57,10 @@ using Segment = Eigen::Map<Eigen::Matrix<double, S, 1>>;
 template <int S>
 void subtract_lower_gram(Block<S>& D, const Block<S>& L) {
   if constexpr (S == 12) {
-    const auto strip = [&]<int C>() {
+    for_column_strips([&]<int C>() {
       D.template block<12 - 4 * C, 4>(4 * C, 4 * C) -=
           L.template middleRows<12 - 4 * C>(4 * C).lazyProduct(L.template middleRows<4>(4 * C).transpose());
-    };
-    strip.template operator()<0>();
-    strip.template operator()<1>();
-    strip.template operator()<2>();
+    });
   } else {
     D -= L.lazyProduct(L.transpose());
   }
@@ -73,13 +72,10 @@ template <int S>
 void multiply_by_lower_transpose(Block<S>& B, const Block<S>& X) {
   if constexpr (S == 12) {
     Eigen::Matrix<double, 12, 12> result;
-    const auto strip = [&]<int C>() {
+    for_column_strips([&]<int C>() {
       result.template middleCols<4>(4 * C) =
           B.template leftCols<4 * C + 4>().lazyProduct(X.template block<4, 4 * C + 4>(4 * C, 0).transpose());
-    };
-    strip.template operator()<0>();
-    strip.template operator()<1>();
-    strip.template operator()<2>();
+    });
     B = result;
   } else {
     B = Eigen::Matrix<double, S, S>(B.lazyProduct(X.transpose()));

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <stiffsoft/coupling/linear_solver/column_strips.hpp>
+
 namespace stiffsoft {
 
 BlockHessian::BlockHessian(const std::vector<DofBlock>& blocks) : m_blocks(blocks), m_row_slots(blocks.size()) {
@@ -71,13 +73,10 @@ void BlockHessian::add(int i, int j, const Eigen::Ref<const Eigen::MatrixXd>& H)
 void BlockHessian::add_upper(int i, int j, const double* values) {
   if (i == j && m_blocks[i].size == 12) {  // an affine body's: by strips of four columns down to the diagonal
     double* D = m_pool.data() + m_diagonal[i];
-    const auto strip = [&]<int C>() {
+    for_column_strips([&]<int C>() {
       using Strip = Eigen::Matrix<double, 4 * C + 4, 4>;
       Eigen::Map<Strip, 0, Eigen::OuterStride<12>>(D + 48 * C) += Eigen::Map<const Strip, 0, Eigen::OuterStride<12>>(values + 48 * C);
-    };
-    strip.template operator()<0>();
-    strip.template operator()<1>();
-    strip.template operator()<2>();
+    });
     return;
   }
   if (i == j) {

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include <stiffsoft/coupling/linear_solver/column_strips.hpp>
+
 namespace stiffsoft {
 
 namespace {
@@ -18,13 +20,10 @@ int weights(int columns) { return columns == 12 ? 4 : 1; }
 /// below the strips are left as they are.
 template <int R>
 void upper_product(const Eigen::Matrix<double, R, 12>& A, const Eigen::Matrix<double, R, 12>& B, double* out) {
-  const auto strip = [&]<int C>() {
+  for_column_strips([&]<int C>() {
     Eigen::Map<Eigen::Matrix<double, 4 * C + 4, 4>, 0, Eigen::OuterStride<12>>(out + 48 * C) =
         A.template leftCols<4 * C + 4>().transpose().lazyProduct(B.template middleCols<4>(4 * C));
-  };
-  strip.template operator()<0>();
-  strip.template operator()<1>();
-  strip.template operator()<2>();
+  });
 }
 
 /// Lays out the stencil's blocks in `out`: for every slot pair (t, s) with block[t] ≤ block[s],
