@@ -25,7 +25,18 @@ struct LevelSplit {
   int minimum, grain;
 };
 constexpr LevelSplit kFactorSplit{32, 16};
-constexpr LevelSplit kSolveSplit{1024, 512};
+constexpr LevelSplit kSolveSplit{128, 64};
+
+/// Calls f(k) for k in [0, n) in parallel tasks of at least `grain`; f must write only what k
+/// owns. For the copies and comparisons around the factorisation: a 12×12 block's copy costs
+/// about 50 ns, so a task of 32 blocks outweighs its hand-out.
+template <class F>
+void for_each_index(std::size_t n, std::size_t grain, F&& f) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, grain), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t k = r.begin(); k < r.end(); ++k) f(k);
+  });
+}
+constexpr std::size_t kCopyGrain = 32;
 
 /// Calls f(j) for every column, level by level (children before parents when `upward`,
 /// parents first otherwise); the columns of one level are independent.
@@ -147,7 +158,8 @@ Elimination eliminate(const std::vector<std::vector<int>>& adjacent, const std::
 /// Plain loops: for blocks of 12 or 3 the compiler unrolls them, where Eigen's LLT and
 /// triangular solve go through its general blocked kernels.
 template <int S>
-bool invert_cholesky_factor(Block<S>& D, int s) {
+bool invert_cholesky_factor(Block<S>& D, int size) {
+  const int s = S == Eigen::Dynamic ? size : S;  // a constant bound the compiler can unroll
   for (int j = 0; j < s; ++j) {  // L, column by column, over D's lower triangle
     double pivot = D(j, j);
     for (int k = 0; k < j; ++k) pivot -= D(j, k) * D(j, k);
@@ -257,18 +269,24 @@ void BlockCholesky::analyze(const BlockUpper& H) {
     for (int k = H.column_starts[J]; k < H.column_starts[J + 1]; ++k) {
       const int I = H.rows[k], pi = position[I], pj = position[J];
       if (pi == pj) {
-        m_target.push_back({Target::Diagonal, pj, m_columns[pj].diagonal});
+        m_target.push_back({Target::Diagonal, pj, m_columns[pj].diagonal, J});
         filled_diagonal[pj] = 1;
       } else if (pi > pj) {
-        m_target.push_back({Target::AsIs, pj, entry_at(pi, pj)});
+        m_target.push_back({Target::AsIs, pj, entry_at(pi, pj), J});
       } else {
-        m_target.push_back({Target::Transposed, pi, entry_at(pj, pi)});
+        m_target.push_back({Target::Transposed, pi, entry_at(pj, pi), J});
       }
       m_input_at.push_back(input);
       input += std::size_t(sizes[I]) * sizes[J];
     }
   m_input_at.push_back(input);
   m_input.assign(input, 0.0);
+  m_input_offsets.assign(nb + 1, 0);
+  for (const Target& t : m_target) ++m_input_offsets[t.column + 1];
+  for (int j = 0; j < nb; ++j) m_input_offsets[j + 1] += m_input_offsets[j];
+  m_inputs.resize(m_target.size());
+  std::vector<int> next_input(m_input_offsets.begin(), m_input_offsets.end() - 1);
+  for (std::size_t k = 0; k < m_target.size(); ++k) m_inputs[next_input[m_target[k].column]++] = int(k);
   m_unfilled_offsets.assign(1, 0);
   m_unfilled.clear();
   for (int j = 0; j < nb; ++j) {
@@ -283,6 +301,30 @@ void BlockCholesky::analyze(const BlockUpper& H) {
   m_kept = false;
   const bool uniform = std::all_of(sizes.begin(), sizes.end(), [&](int s) { return s == sizes.front(); });
   m_uniform = uniform && nb ? sizes.front() : 0;
+}
+
+void BlockCholesky::load_column(int j, const BlockUpper& H, double shift) {
+  // L_jj's upper triangle keeps what the last factorisation left there: nothing uses it before
+  // the inversion sets it to zero.
+  for (int u = m_unfilled_offsets[j]; u < m_unfilled_offsets[j + 1]; ++u)
+    std::fill_n(m_pool.begin() + m_unfilled[u].at, m_unfilled[u].count, 0.0);
+  for (int input = m_input_offsets[j]; input < m_input_offsets[j + 1]; ++input) {
+    const int k = m_inputs[input];
+    const Target& t = m_target[k];
+    const int si = H.size(H.rows[k]), sj = H.size(t.block_column);
+    const double* a = H.values[k];  // a(r, c) = a[r + c·si]
+    double* l = m_pool.data() + t.at;
+    if (t.kind == Target::AsIs) {
+      std::copy(a, a + std::size_t(si) * sj, l);
+    } else if (t.kind == Target::Transposed) {
+      for (int c = 0; c < sj; ++c)
+        for (int r = 0; r < si; ++r) l[c + std::size_t(r) * sj] = a[r + std::size_t(c) * si];
+    } else {
+      for (int c = 0; c < sj; ++c)
+        for (int r = 0; r <= c; ++r) l[c + std::size_t(r) * sj] = a[r + std::size_t(c) * si];
+      for (int c = 0; c < sj; ++c) l[c + std::size_t(c) * sj] += shift;
+    }
+  }
 }
 
 template <int S>
@@ -335,45 +377,22 @@ bool BlockCholesky::factorize(const BlockUpper& H, double shift) {
   // revised directions change a few stencils' blocks and factorise again).
   std::vector<char> redo(nb, 1);
   if (m_kept && shift == m_shift) {
+    std::vector<char> changed(blocks);
+    for_each_index(blocks, kCopyGrain, [&](std::size_t k) {
+      changed[k] = !std::equal(H.values[k], H.values[k] + numbers(k), m_input.data() + m_input_at[k]);
+    });
     std::fill(redo.begin(), redo.end(), 0);
     for (std::size_t k = 0; k < blocks; ++k)
-      if (!redo[m_target[k].column] && !std::equal(H.values[k], H.values[k] + numbers(k), m_input.data() + m_input_at[k]))
-        redo[m_target[k].column] = 1;
+      if (changed[k]) redo[m_target[k].column] = 1;
     for (int j : m_by_level)  // a column's descendants come before it
       for (int u = m_update_offsets[j]; u < m_update_offsets[j + 1] && !redo[j]; ++u) redo[j] = redo[m_updates[u].column];
   }
-  // A recomputed column starts from H's blocks, copied below over the old ones, and zero in its
-  // fill-in. L_jj's upper triangle keeps what the last factorisation left there: nothing uses
-  // it before the inversion sets it to zero.
-  m_refactored = 0;
-  for (std::size_t j = 0; j < nb; ++j) {
-    if (!redo[j]) continue;
-    ++m_refactored;
-    for (int u = m_unfilled_offsets[j]; u < m_unfilled_offsets[j + 1]; ++u)
-      std::fill_n(m_pool.begin() + m_unfilled[u].at, m_unfilled[u].count, 0.0);
-  }
-  for (int J = 0; J < H.num_blocks(); ++J)
-    for (int k = H.column_starts[J]; k < H.column_starts[J + 1]; ++k) {
-      const Target& t = m_target[k];
-      if (!redo[t.column]) continue;
-      const int si = H.size(H.rows[k]), sj = H.size(J);
-      const double* a = H.values[k];  // a(r, c) = a[r + c·si]
-      double* l = m_pool.data() + t.at;
-      if (t.kind == Target::AsIs) {
-        std::copy(a, a + std::size_t(si) * sj, l);
-      } else if (t.kind == Target::Transposed) {
-        for (int c = 0; c < sj; ++c)
-          for (int r = 0; r < si; ++r) l[c + std::size_t(r) * sj] = a[r + std::size_t(c) * si];
-      } else {
-        for (int c = 0; c < sj; ++c)
-          for (int r = 0; r <= c; ++r) l[c + std::size_t(r) * sj] = a[r + std::size_t(c) * si];
-        for (int c = 0; c < sj; ++c) l[c + std::size_t(c) * sj] += shift;
-      }
-    }
+  m_refactored = std::size_t(std::count(redo.begin(), redo.end(), 1));
   tbb::enumerable_thread_specific<std::vector<int>> slots(std::vector<int>(nb, -1));
   std::atomic<bool> ok{true};
   for_levels(m_level_offsets, m_by_level, true, kFactorSplit, [&](int j) {
     if (!redo[j] || !ok.load(std::memory_order_relaxed)) return;
+    load_column(j, H, shift);
     const bool column_ok = m_uniform == 12 ? factor_column<12>(j, slots.local())
                            : m_uniform == 3 ? factor_column<3>(j, slots.local())
                                             : factor_column<Eigen::Dynamic>(j, slots.local());
@@ -383,8 +402,9 @@ bool BlockCholesky::factorize(const BlockUpper& H, double shift) {
   m_kept = ok;
   if (ok) {
     // A column not computed again had every block equal to the kept one: only the others are copied.
-    for (std::size_t k = 0; k < blocks; ++k)
+    for_each_index(blocks, kCopyGrain, [&](std::size_t k) {
       if (redo[m_target[k].column]) std::copy(H.values[k], H.values[k] + numbers(k), m_input.data() + m_input_at[k]);
+    });
     m_shift = shift;
   }
   return ok;

@@ -77,6 +77,9 @@ class BlockCholesky {
   /// row to its entry in column j (scratch of one thread). S: the common block size or Dynamic.
   template <int S>
   bool factor_column(int j, std::vector<int>& slot);
+  /// Starts column j of L from H + shift·I: its blocks of H copied into the pool, its fill-in
+  /// zeroed. Each column owns its places in the pool, so columns load in parallel.
+  void load_column(int j, const BlockUpper& H, double shift);
   /// x ← L⁻ᵀ L⁻¹ x (the original DOF order throughout: P only decides the order of columns).
   template <int S>
   void solve_in_place(Eigen::VectorXd& x) const;
@@ -94,8 +97,10 @@ class BlockCholesky {
     enum Kind : char { Diagonal, AsIs, Transposed } kind;
     int column;
     std::size_t at;
+    int block_column;  ///< the block column of H that stores it
   };
   std::vector<Target> m_target;                  // per stored block of H
+  std::vector<int> m_input_offsets, m_inputs;    // m_inputs[m_input_offsets[j] …): the blocks of H column j of L holds
   /// A range of the pool that no block of H fills: a block of fill-in (or a diagonal block H
   /// lacks), zeroed before its column is computed again; the others are overwritten by H's.
   struct Unfilled {
