@@ -163,12 +163,12 @@ bool moves(const BodyModel& body) {
 std::vector<Box> body_boxes(const Model& model, const std::vector<Box>& vertex) {
   const int nb = int(model.bodies.size());
   std::vector<Box> body_box(nb);
-  for (int b = 0; b < nb; ++b) {
+  tbb::parallel_for(0, nb, [&](int b) {
     const BodyModel& body = model.bodies[b];
     Box box{Eigen::Array3d::Constant(1e300), Eigen::Array3d::Constant(-1e300)};
     for (int v = body.vertex_begin; v < body.vertex_end; ++v) extend(box, vertex[v]);
     body_box[b] = box;
-  }
+  });
   return body_box;
 }
 
@@ -188,20 +188,26 @@ std::vector<std::array<int, 2>> body_pairs(const Model& model, const std::vector
   std::vector<Swept> swept(nb);
   for (int i = 0; i < nb; ++i) swept[i] = {body_box[order[i]], moves(model.bodies[order[i]])};
   // Most bodies the sweep meets do not overlap in y or z, unpredictably: each is written and
-  // kept only when it does, without a branch on it.
-  std::vector<std::array<int, 2>> pairs(64);
-  std::size_t count = 0;
-  for (int i = 0; i < nb; ++i) {
-    const Swept& a = swept[i];
-    for (int j = i + 1; j < nb && swept[j].box.lo[0] <= a.box.hi[0]; ++j) {
-      const Swept& b = swept[j];
-      if (count == pairs.size()) pairs.resize(2 * count);
-      pairs[count] = {std::min(order[i], order[j]), std::max(order[i], order[j])};
-      count += (a.moves | b.moves) & (a.box.lo[0] <= b.box.hi[0]) & (a.box.lo[1] <= b.box.hi[1]) &
-               (b.box.lo[1] <= a.box.hi[1]) & (a.box.lo[2] <= b.box.hi[2]) & (b.box.lo[2] <= a.box.hi[2]);
-    }
-  }
-  pairs.resize(count);
+  // kept only when it does, without a branch on it. The sweep runs in chunks of bodies in
+  // parallel, their pairs gathered in the serial sweep's order.
+  struct Found {
+    std::vector<std::array<int, 2>> pairs = std::vector<std::array<int, 2>>(64);
+    std::size_t count = 0;
+  };
+  std::vector<std::array<int, 2>> pairs;
+  in_ordered_chunks<Found>(
+      std::size_t(nb), 64,
+      [&](std::size_t i, Found& found) {
+        const Swept& a = swept[i];
+        for (int j = int(i) + 1; j < nb && swept[j].box.lo[0] <= a.box.hi[0]; ++j) {
+          const Swept& b = swept[j];
+          if (found.count == found.pairs.size()) found.pairs.resize(2 * found.count);
+          found.pairs[found.count] = {std::min(order[i], order[j]), std::max(order[i], order[j])};
+          found.count += (a.moves | b.moves) & (a.box.lo[0] <= b.box.hi[0]) & (a.box.lo[1] <= b.box.hi[1]) &
+                         (b.box.lo[1] <= a.box.hi[1]) & (a.box.lo[2] <= b.box.hi[2]) & (b.box.lo[2] <= a.box.hi[2]);
+        }
+      },
+      [&](const Found& found) { pairs.insert(pairs.end(), found.pairs.begin(), found.pairs.begin() + std::ptrdiff_t(found.count)); });
   for (int b = 0; b < nb; ++b)
     if (model.bodies[b].self_contact()) pairs.push_back({b, b});
   return pairs;

@@ -29,6 +29,7 @@ class BlockHessian {
   /// storage stays for reuse.
   void clear();
   /// Adds H (size_i × size_j) to block (i, j); for i > j the transpose is added to (j, i).
+  /// A diagonal block (i = j) touches nothing shared: threads may add different ones at once.
   void add(int i, int j, const Eigen::Ref<const Eigen::MatrixXd>& H);
   /// Adds the size_i × size_j column-major block stored at `values` to block (i, j), i ≤ j; of
   /// a diagonal block (i = j) only the upper triangle is read.
