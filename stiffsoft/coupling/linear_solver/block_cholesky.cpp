@@ -195,6 +195,9 @@ void BlockCholesky::analyze(const Eigen::SparseMatrix<double>& upper, const std:
 }
 
 void BlockCholesky::analyze(const BlockUpper& H) {
+  if (analysed() && H.offsets == m_factorised.offsets && H.column_starts == m_factorised.column_starts &&
+      H.rows == m_factorised.rows)
+    return;  // the pattern analysed last (a new time step's first Hessian, often)
   const int nb = H.num_blocks();
   std::vector<int> sizes(nb);
   for (int b = 0; b < nb; ++b) sizes[b] = H.size(b);

@@ -27,7 +27,8 @@ class BlockCholesky {
  public:
   /// Symbolic analysis of H's block pattern: ordering, elimination tree, the block pattern of
   /// L and where each stored block of H goes. Throws std::invalid_argument when a stored
-  /// block lies below the diagonal.
+  /// block lies below the diagonal. The pattern analysed last keeps its analysis (and the
+  /// factor kept for factorize()'s reuse).
   void analyze(const BlockUpper& H);
   /// analyze() of the blocks of `upper` (n × n CSC, entries with row ≤ column) over DOF blocks
   /// of the given sizes (Σ sizes = n; see gather_blocks(), which throws when they do not fit).

@@ -362,16 +362,21 @@ void PetscSolver::analyze_pattern(const Eigen::SparseMatrix<double>& upper) {
     throw std::invalid_argument("PETSc backend: the matrix is " + std::to_string(upper.rows()) + " × " +
                                 std::to_string(upper.cols()) +
                                 "; expected square with a positive multiple of 3 rows");
+  std::vector<int> sizes;
   if (!m.given_block_sizes.empty()) {
     long sum = 0;
     for (const int s : m.given_block_sizes) sum += s;
     if (sum != n)
       throw std::invalid_argument("PETSc backend: the DOF block sizes add up to " + std::to_string(sum) +
                                   " rows but the matrix has " + std::to_string(n));
-    m.block_sizes = m.given_block_sizes;
+    sizes = m.given_block_sizes;
   } else {
-    m.block_sizes = infer_block_sizes(upper);
+    sizes = infer_block_sizes(upper);
   }
+  // The pattern analysed already (each time step starts a new Hessian, often of the last
+  // step's pattern): the matrix, its preallocation and the preconditioner's symbolic set-up stay.
+  if (m.pattern && m.n == n && sizes == m.block_sizes && m.pattern->same_pattern(upper)) return;
+  m.block_sizes = std::move(sizes);
   const std::vector<int> bounds = split_rows(m.block_sizes, m.size);
   m.n = n;
   m.row_begin = bounds[m.rank];

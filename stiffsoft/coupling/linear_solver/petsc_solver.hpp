@@ -37,7 +37,8 @@ struct PetscSolverSettings {
 
 /// PETSc KSP solver of H p = b with H symmetric positive definite.
 ///
-/// analyze_pattern() builds the BAIJ/SBAIJ matrix (bs = 3) preallocated from the pattern;
+/// analyze_pattern() builds the BAIJ/SBAIJ matrix (bs = 3) preallocated from the pattern (and
+/// keeps everything when given the pattern it analysed last);
 /// factorize() copies the values into it (no new allocation while the pattern is unchanged)
 /// and sets up the preconditioner; solve() runs the Krylov method with a zero initial guess
 /// and returns p on every rank. The reported residual is the true ‖b − H p‖/‖b‖; when the
