@@ -59,27 +59,36 @@ Eigen::SparseMatrix<double> BlockUpper::compressed(double shift) const {
   const int n = num_dofs();
   Eigen::SparseMatrix<double> H(n, n);
   H.resizeNonZeros(Eigen::Index(upper_nonzeros()));
-  // Filled column by column in row order: the compressed arrays are written directly.
-  Eigen::SparseMatrix<double>::StorageIndex* outer = H.outerIndexPtr();
-  Eigen::SparseMatrix<double>::StorageIndex* inner = H.innerIndexPtr();
+  // The column starts first (a column's count follows from its block column's blocks), then
+  // the block columns filled in parallel, each column in row order: the compressed arrays are
+  // written directly.
+  using Index = Eigen::SparseMatrix<double>::StorageIndex;
+  Index* outer = H.outerIndexPtr();
+  Index* inner = H.innerIndexPtr();
   double* out = H.valuePtr();
-  std::size_t e = 0;
   outer[0] = 0;
   for (int j = 0; j < num_blocks(); ++j) {
-    for (int c = 0; c < size(j); ++c) {
-      const int column = offsets[j] + c;
-      for (int k = column_starts[j]; k < column_starts[j + 1]; ++k) {
-        const int i = rows[k], si = size(i);
-        const int last = i == j ? c + 1 : si;  // a diagonal block's upper triangle
-        for (int r = 0; r < last; ++r, ++e) {
-          inner[e] = offsets[i] + r;
-          out[e] = values[k][r + std::size_t(c) * si];
-        }
-        if (i == j) out[e - 1] += shift;
-      }
-      outer[column + 1] = Eigen::SparseMatrix<double>::StorageIndex(e);
-    }
+    Index above = 0;  // entries of block column j above its diagonal block
+    for (int k = column_starts[j]; k < column_starts[j + 1]; ++k)
+      if (rows[k] != j) above += Index(size(rows[k]));
+    const bool has_diagonal = column_starts[j] < column_starts[j + 1] && rows[column_starts[j + 1] - 1] == j;
+    for (int c = 0; c < size(j); ++c) outer[offsets[j] + c + 1] = outer[offsets[j] + c] + above + (has_diagonal ? c + 1 : 0);
   }
+  tbb::parallel_for(tbb::blocked_range<int>(0, num_blocks(), 16), [&](const tbb::blocked_range<int>& r) {
+    for (int j = r.begin(); j < r.end(); ++j)
+      for (int c = 0; c < size(j); ++c) {
+        std::size_t e = std::size_t(outer[offsets[j] + c]);
+        for (int k = column_starts[j]; k < column_starts[j + 1]; ++k) {
+          const int i = rows[k], si = size(i);
+          const int last = i == j ? c + 1 : si;  // a diagonal block's upper triangle
+          for (int row = 0; row < last; ++row, ++e) {
+            inner[e] = offsets[i] + row;
+            out[e] = values[k][row + std::size_t(c) * si];
+          }
+          if (i == j) out[e - 1] += shift;
+        }
+      }
+  });
   return H;
 }
 
