@@ -7,12 +7,14 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <random>
 #include <set>
 #include <stiffsoft/coupling/contact/broad_phase.hpp>
 #include <stiffsoft/coupling/contact/distance_classification.hpp>
 #include <stiffsoft/coupling/contact/ordered_chunks.hpp>
+#include <stiffsoft/coupling/terms/ordered_sum.hpp>
 
 #include "scene_helpers.hpp"
 
@@ -222,6 +224,20 @@ TEST(InOrderedChunks, GathersInItemOrderWhateverTheThreadCount) {
     for (int i = 0; i < 1003; ++i)
       if (i % 3) serial.push_back(i);
     EXPECT_EQ(out, serial) << threads << " threads";
+  }
+}
+
+TEST(OrderedSum, IsTheSerialLoopsSumBitForBitWhateverTheThreadCount) {
+  // Terms of very different sizes, so that any other order of addition rounds differently.
+  const auto term = [](std::size_t k) { return std::ldexp(1.0 + 1e-3 * double(k % 17), int(k % 61) - 30) * (k % 2 ? 1 : -1); };
+  double serial = 0.25;
+  for (std::size_t k = 0; k < 5000; ++k) serial += term(k);
+  double reversed = 0.25;
+  for (std::size_t k = 5000; k-- > 0;) reversed += term(k);
+  EXPECT_NE(reversed, serial);  // the order matters for these terms
+  for (int threads : {1, 2}) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    EXPECT_EQ(ordered_sum(0.25, 5000, 7, term), serial) << threads << " threads";
   }
 }
 

@@ -176,6 +176,34 @@ TEST(BlockCholesky, FactorisesAgainOnlyTheColumnsAChangeReaches) {
   EXPECT_EQ(factor.solve(b), fresh_solution(B));
 }
 
+TEST(BlockCholesky, KeepsItsAnalysisAndFactorForThePatternItAnalysedLast) {
+  const int blocks = 30;
+  const std::vector<int> sizes(blocks, 12);
+  std::vector<std::pair<int, int>> pairs;
+  for (int b = 0; b + 1 < blocks; ++b) pairs.emplace_back(b, b + 1);
+  const Eigen::SparseMatrix<double> A = spd_upper(sizes, pairs, 9);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(A.rows(), -1, 1);
+  BlockCholesky factor;
+  factor.analyze(A, sizes);
+  ASSERT_TRUE(factor.factorize(A));
+  const Eigen::VectorXd first = factor.solve(b);
+  factor.analyze(A, sizes);  // the same pattern: nothing to analyse, the factor stays
+  ASSERT_TRUE(factor.factorize(A));
+  EXPECT_EQ(factor.refactored_columns(), 0u);
+  EXPECT_EQ(factor.solve(b), first);
+  // A new pattern is analysed afresh: every column is factorised again.
+  std::vector<std::pair<int, int>> more = pairs;
+  more.emplace_back(0, blocks - 1);
+  const Eigen::SparseMatrix<double> B = spd_upper(sizes, more, 9);
+  factor.analyze(B, sizes);
+  ASSERT_TRUE(factor.factorize(B));
+  EXPECT_EQ(factor.refactored_columns(), std::size_t(blocks));
+  BlockCholesky fresh;
+  fresh.analyze(B, sizes);
+  ASSERT_TRUE(fresh.factorize(B));
+  EXPECT_EQ(factor.solve(b), fresh.solve(b));
+}
+
 TEST(BlockCholesky, RejectsBlocksThatDoNotCoverTheMatrix) {
   const Eigen::SparseMatrix<double> A = spd_upper({12, 12}, {}, 8);
   BlockCholesky factor;

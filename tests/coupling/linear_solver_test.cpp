@@ -273,6 +273,26 @@ TEST(PetscSolver, ReusesTheMatrixWhileThePatternIsUnchanged) {
   EXPECT_EQ(solver.preallocations(), 2);
 }
 
+TEST(PetscSolver, KeepsItsAnalysisWhenAnalysingThePatternAgain) {
+  // Each time step starts a new Hessian, often of the last step's pattern, and analyses it.
+  const LinearSystem s = load_linear_system(kDataDir, kSystems[1]);
+  PetscSolverSettings settings;
+  settings.relative_tolerance = 1e-10;
+  PetscSolver solver(settings);
+  solver.analyze_pattern(s.upper);
+  ASSERT_TRUE(solver.factorize(s.upper));
+  const Eigen::VectorXd first = solver.solve(s.b);
+  solver.analyze_pattern(s.upper);
+  EXPECT_EQ(solver.preallocations(), 1);
+  ASSERT_TRUE(solver.factorize(s.upper));
+  EXPECT_EQ(solver.solve(s.b), first);  // the same solve, bit for bit
+  const LinearSystem other = load_linear_system(kDataDir, kSystems[2]);
+  solver.analyze_pattern(other.upper);
+  EXPECT_EQ(solver.preallocations(), 2);
+  ASSERT_TRUE(solver.factorize(other.upper));
+  EXPECT_LE(relative_residual(other, solver.solve(other.b)), 1e-10);
+}
+
 TEST(PetscSolver, UsesGivenDofBlocksAndChecksThem) {
   const LinearSystem s = load_linear_system(kDataDir, kSystems[0]);
   PetscSolverSettings settings;
