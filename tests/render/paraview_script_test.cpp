@@ -1,11 +1,14 @@
 /// @file The ParaView script beside every run's .pvd (stiffsoft/io/paraview_script.hpp) runs in
 /// ParaView's own pvbatch 5.11 and draws the run coloured: affine bodies blue, soft bodies
 /// yellow to red. pvbatch comes from $STIFFSOFT_PVBATCH, the PATH, or build/paraview-aside
-/// (scripts/paraview_aside.sh); without one the test is skipped and says why.
+/// (scripts/paraview_aside.sh); without one the test is skipped and says why. Also the private
+/// Xvfb its retry relies on: a second one takes another display while the first runs.
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <iostream>
+#include <memory>
 
 #include "apps/render/x_display.hpp"
 #include "picture_checks.hpp"
@@ -27,6 +30,23 @@ std::string find_pvbatch() {
 }
 
 }  // namespace
+
+TEST(XDisplay, ASecondPrivateXvfbTakesAnotherDisplayWhileTheFirstRuns) {
+  // What the retry below relies on: with the failed display still running, a new one is fresh.
+  if (!on_path("Xvfb")) GTEST_SKIP() << "no Xvfb (apt-get install xvfb)";
+  const char* given = std::getenv("DISPLAY");
+  const std::string saved = given ? given : "";
+  ::unsetenv("DISPLAY");
+  {
+    const stiffsoft::XDisplay first;
+    ASSERT_TRUE(first.started());
+    ::unsetenv("DISPLAY");
+    const stiffsoft::XDisplay second;
+    ASSERT_TRUE(second.started());
+    EXPECT_NE(first.name(), second.name());
+  }
+  if (!saved.empty()) ::setenv("DISPLAY", saved.c_str(), 1);
+}
 
 TEST(ParaViewScript, OpensTheRunColouredInPvbatch) {
   const std::string pvbatch = find_pvbatch();
@@ -51,18 +71,25 @@ TEST(ParaViewScript, OpensTheRunColouredInPvbatch) {
   // never reproduced on this machine. One possible cause, now avoided by XDisplay: another
   // server answering that display's abstract socket, which clients try first and which a
   // lock file in our /tmp does not reveal. A connection failure is still retried once on a
-  // fresh display, saying so with what Xvfb printed; any other failure is not.
+  // fresh display, saying so with what Xvfb printed; any other failure is not. The failed
+  // display is kept until the test ends, so that the retry's Xvfb takes another number (session
+  // 29 saw both attempts fail on :90 on a loaded machine, the second one started on the number
+  // the first had just freed).
+  std::unique_ptr<stiffsoft::XDisplay> failed;
   for (int attempt = 1;; ++attempt) {
     const fs::path xvfb_log = out / ("xvfb_" + std::to_string(attempt) + ".log");
-    stiffsoft::XDisplay display(xvfb_log);  // with Xvfb present, failing to start it is a failure, not a skip
+    // With Xvfb present, failing to start it is a failure, not a skip.
+    auto display = std::make_unique<stiffsoft::XDisplay>(xvfb_log);
     const int status = std::system(command.c_str());
     const std::string log = read_text(out / "pvbatch.log");
     const bool no_connection = log.find("bad X server connection") != std::string::npos;
-    const std::string about_x = "display " + display.name() + (display.started() ? " (private Xvfb, " : " (") +
-                                (display.running() ? "still running" : "gone") + "); Xvfb printed:\n" +
+    const std::string about_x = "display " + display->name() + (display->started() ? " (private Xvfb, " : " (") +
+                                (display->running() ? "still running" : "gone") + "); Xvfb printed:\n" +
                                 read_text(xvfb_log);
     if (status != 0 && no_connection && attempt == 1) {
       std::cerr << "pvbatch could not connect to " << about_x << "\nretrying on a fresh display\n";
+      failed = std::move(display);
+      ::unsetenv("DISPLAY");  // the next XDisplay starts its own Xvfb instead of taking this one
       continue;
     }
     ASSERT_EQ(status, 0) << log << "\n" << about_x;
