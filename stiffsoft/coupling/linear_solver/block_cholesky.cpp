@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include <stiffsoft/coupling/for_each_item.hpp>
 #include <stiffsoft/coupling/linear_solver/column_strips.hpp>
 
 namespace stiffsoft {
@@ -27,15 +28,8 @@ struct LevelSplit {
 constexpr LevelSplit kFactorSplit{32, 16};
 constexpr LevelSplit kSolveSplit{128, 64};
 
-/// Calls f(k) for k in [0, n) in parallel tasks of at least `grain`; f must write only what k
-/// owns. For the copies and comparisons around the factorisation: a 12×12 block's copy costs
-/// about 50 ns, so a task of 32 blocks outweighs its hand-out.
-template <class F>
-void for_each_index(std::size_t n, std::size_t grain, F&& f) {
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, grain), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t k = r.begin(); k < r.end(); ++k) f(k);
-  });
-}
+/// Blocks per task of the comparisons and copies around the factorisation: a 12×12 block's
+/// copy costs about 50 ns, so a task of 32 blocks outweighs its hand-out.
 constexpr std::size_t kCopyGrain = 32;
 
 /// Calls f(j) for every column, level by level (children before parents when `upward`,
@@ -381,7 +375,7 @@ bool BlockCholesky::factorize(const BlockUpper& H, double shift) {
   std::vector<char> redo(nb, 1);
   if (m_kept && shift == m_shift) {
     std::vector<char> changed(blocks);
-    for_each_index(blocks, kCopyGrain, [&](std::size_t k) {
+    for_each_item(blocks, kCopyGrain, [&](std::size_t k) {
       changed[k] = !std::equal(H.values[k], H.values[k] + numbers(k), m_input.data() + m_input_at[k]);
     });
     std::fill(redo.begin(), redo.end(), 0);
@@ -405,7 +399,7 @@ bool BlockCholesky::factorize(const BlockUpper& H, double shift) {
   m_kept = ok;
   if (ok) {
     // A column not computed again had every block equal to the kept one: only the others are copied.
-    for_each_index(blocks, kCopyGrain, [&](std::size_t k) {
+    for_each_item(blocks, kCopyGrain, [&](std::size_t k) {
       if (redo[m_target[k].column]) std::copy(H.values[k], H.values[k] + numbers(k), m_input.data() + m_input_at[k]);
     });
     m_shift = shift;

@@ -1,9 +1,8 @@
 #include <stiffsoft/coupling/model/model.hpp>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
+
+#include <stiffsoft/coupling/for_each_item.hpp>
 
 namespace stiffsoft {
 
@@ -36,16 +35,14 @@ namespace {
 /// Calls f(b) for every body, in parallel by eight or more: each body writes only its own
 /// vertices' rows.
 template <class F>
-void for_each_body(int bodies, F&& f) {
-  tbb::parallel_for(tbb::blocked_range<int>(0, bodies, 8), [&](const tbb::blocked_range<int>& r) {
-    for (int b = r.begin(); b < r.end(); ++b) f(b);
-  });
+void for_each_body(std::size_t bodies, const F& f) {
+  for_each_item(bodies, 8, [&](std::size_t b) { f(int(b)); });
 }
 }  // namespace
 
 Eigen::MatrixX3d Model::surface(const Eigen::VectorXd& q) const {
   Eigen::MatrixX3d x(mesh.x_bar.rows(), 3);
-  for_each_body(int(bodies.size()), [&](int b) {
+  for_each_body(bodies.size(), [&](int b) {
     const BodyModel& body = bodies[b];
     if (body.representation == Representation::Soft) {
       for (int v = body.vertex_begin; v < body.vertex_end; ++v) {
@@ -67,7 +64,7 @@ Eigen::MatrixX3d Model::surface(const Eigen::VectorXd& q) const {
 
 Eigen::MatrixX3d Model::surface_step(const Eigen::VectorXd& dq) const {
   Eigen::MatrixX3d dx = Eigen::MatrixX3d::Zero(mesh.x_bar.rows(), 3);
-  for_each_body(int(bodies.size()), [&](int b) {
+  for_each_body(bodies.size(), [&](int b) {
     const BodyModel& body = bodies[b];
     if (body.representation == Representation::Soft) {
       for (int v = body.vertex_begin; v < body.vertex_end; ++v) {
