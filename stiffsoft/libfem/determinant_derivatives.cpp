@@ -34,4 +34,24 @@ Matrix9d determinant_hessian(const Eigen::Matrix3d& F) {
   return H;
 }
 
+void add_determinant_hessian(double s, const Eigen::Matrix3d& F, Matrix9d& H) {
+  // Block (a, b), b = a + 1 or a + 2 (mod 3), is ±[f_k]× with k the third column: + for
+  // (0, 6), (3, 0), (6, 3), − for (0, 3), (3, 6), (6, 0). [f]× has f_z at (1, 0), −f_z at (0, 1), …
+  const auto add_cross = [&](int row, int column, double sign, const Eigen::Vector3d& f) {
+    const Eigen::Vector3d sf = s * (sign * f);
+    H(row + 1, column) += sf.z();
+    H(row, column + 1) -= sf.z();
+    H(row, column + 2) += sf.y();
+    H(row + 2, column) -= sf.y();
+    H(row + 2, column + 1) += sf.x();
+    H(row + 1, column + 2) -= sf.x();
+  };
+  add_cross(0, 3, -1, F.col(2));
+  add_cross(0, 6, 1, F.col(1));
+  add_cross(3, 0, 1, F.col(2));
+  add_cross(3, 6, -1, F.col(0));
+  add_cross(6, 0, -1, F.col(1));
+  add_cross(6, 3, 1, F.col(0));
+}
+
 }  // namespace stiffsoft::fem

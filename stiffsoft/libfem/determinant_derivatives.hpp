@@ -17,4 +17,8 @@ Eigen::Matrix3d cofactor(const Eigen::Matrix3d& F);
 ///   \\ -[f_1]_\times & [f_0]_\times & 0 \end{pmatrix} \f]
 Matrix9d determinant_hessian(const Eigen::Matrix3d& F);
 
+/// H += s ∂²J/∂F², touching only its 36 nonzeros (six cross-product blocks): what a material's
+/// ∂P/∂F adds without forming the 9×9 (each entry gets the same rounding as H + s · H_J).
+void add_determinant_hessian(double s, const Eigen::Matrix3d& F, Matrix9d& H);
+
 }  // namespace stiffsoft::fem

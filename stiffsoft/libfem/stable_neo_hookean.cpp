@@ -23,9 +23,14 @@ Eigen::Matrix3d StableNeoHookean::P(const Eigen::Matrix3d& F) const {
 }
 
 Matrix9d StableNeoHookean::dPdF(const Eigen::Matrix3d& F) const {
-  const Vector9d g = vec(cofactor(F));
-  return m_mu * Matrix9d::Identity() + m_lambda * g * g.transpose() +
-         m_lambda * (F.determinant() - m_alpha) * determinant_hessian(F);
+  // Entry by entry, no 9×9 temporaries: λ̂ g gᵀ, then μ̂ on the diagonal, then the 36 nonzeros of
+  // λ̂ (J − α) ∂²J/∂F².
+  const Vector9d g = vec(cofactor(F)), lambda_g = m_lambda * g;
+  Matrix9d H;
+  for (int j = 0; j < 9; ++j) H.col(j) = g(j) * lambda_g;
+  H.diagonal().array() += m_mu;
+  add_determinant_hessian(m_lambda * (F.determinant() - m_alpha), F, H);
+  return H;
 }
 
 Matrix9d StableNeoHookean::dPdF_projected(const Eigen::Matrix3d& F) const {
@@ -43,8 +48,8 @@ Matrix9d StableNeoHookean::dPdF_projected(const Eigen::Matrix3d& F) const {
   // D is an expression, formed only for a negative eigenvalue.
   const auto remove = [&](double eigenvalue, const auto& D) {
     if (eigenvalue >= 0) return;
-    const Vector9d d = vec(D);
-    H.noalias() -= eigenvalue * d * d.transpose();
+    const Vector9d d = vec(D), scaled = eigenvalue * d;
+    for (int j = 0; j < 9; ++j) H.col(j) -= d(j) * scaled;  // the rank-one update, no 9×9 temporary
   };
   constexpr int pairs[3][3] = {{0, 1, 2}, {1, 2, 0}, {0, 2, 1}};
   const double r = 1 / std::sqrt(2.0);
