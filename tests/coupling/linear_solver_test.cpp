@@ -139,6 +139,41 @@ TEST(BlockSparsePattern, DetectsAChangedPattern) {
   EXPECT_FALSE(p.same_pattern(B));
 }
 
+TEST(BlockSparsePattern, GathersFromTheBlocksWhatItGathersFromTheirCompressedCopy) {
+  const std::vector<int> sizes{12, 3, 12, 3, 3, 12, 3};
+  const GatheredBlocks g = gather_blocks(random_block_upper(sizes, 9, 5), sizes);
+  const double shift = 0.7;
+  const Eigen::SparseMatrix<double> compressed = g.blocks.compressed(shift);
+  const std::vector<int> bounds = split_rows(sizes, 2);
+  for (const BlockStorage storage : {BlockStorage::Full, BlockStorage::Upper})
+    for (int part = -1; part < 2; ++part) {  // all rows, then each half
+      BlockSparsePattern p = part < 0 ? BlockSparsePattern(compressed, storage)
+                                      : BlockSparsePattern(compressed, storage, bounds[part] / 3, bounds[part + 1] / 3);
+      std::vector<double> expected, values;
+      p.gather_values(compressed, expected);
+      p.map_blocks(g.blocks);
+      p.gather_values(g.blocks, shift, values);
+      EXPECT_EQ(values, expected) << "storage " << int(storage) << ", part " << part;  // bit for bit
+      if (part < 0) {
+        const Eigen::SparseMatrix<double> back = p.upper(values);
+        EXPECT_TRUE(p.same_pattern(back));
+        EXPECT_EQ((dense(back) - dense(compressed)).norm(), 0.0);
+      } else {
+        EXPECT_THROW(p.upper(values), std::logic_error);
+      }
+    }
+}
+
+TEST(BlockSparsePattern, RefusesToMapBlocksItsPatternLacks) {
+  const std::vector<int> sizes{12, 3, 3, 12};
+  const GatheredBlocks few = gather_blocks(random_block_upper(sizes, 1, 6), sizes);
+  const GatheredBlocks more = gather_blocks(random_block_upper(sizes, 6, 7), sizes);
+  BlockSparsePattern p(few.blocks.compressed(), BlockStorage::Upper);
+  EXPECT_THROW(p.map_blocks(more.blocks), std::invalid_argument);
+  std::vector<double> values;
+  EXPECT_THROW(p.gather_values(more.blocks, 0.0, values), std::logic_error);  // not mapped
+}
+
 TEST(InferBlockSizes, FindsAffineBodiesAndSoftNodes) {
   const std::vector<int> sizes{12, 3, 3, 12, 12, 3};
   EXPECT_EQ(infer_block_sizes(random_block_upper(sizes, 0, 5)), sizes);
@@ -291,6 +326,30 @@ TEST(PetscSolver, KeepsItsAnalysisWhenAnalysingThePatternAgain) {
   EXPECT_EQ(solver.preallocations(), 2);
   ASSERT_TRUE(solver.factorize(other.upper));
   EXPECT_LE(relative_residual(other, solver.solve(other.b)), 1e-10);
+}
+
+TEST(PetscSolver, FactorisesBlocksInPlaceAsItsCompressedCopyAndFallsBackFromThem) {
+  // Newton's path: the Hessian's blocks copied into PETSc's without a compressed matrix; the
+  // CHOLMOD fallback forms one only when it runs.
+  const LinearSystem s = load_linear_system(kDataDir, kSystems[1]);
+  const GatheredBlocks g = gather_blocks(s.upper, infer_block_sizes(s.upper));
+  const double shift = 1e-3 * s.upper.diagonal().cwiseAbs().maxCoeff();
+  for (const int cap : {1000, 3}) {  // a cap of 3 CG iterations sends every solve to the fallback
+    PetscSolverSettings settings;
+    settings.relative_tolerance = 1e-10;
+    settings.max_iterations = cap;
+    PetscSolver compressed(settings), blocks(settings);
+    compressed.analyze_pattern(g.blocks.compressed());
+    ASSERT_TRUE(compressed.factorize(g.blocks.compressed(shift)));
+    const Eigen::VectorXd expected = compressed.solve(s.b);
+    for (int k = 0; k < 2; ++k) {
+      blocks.analyze_blocks(g.blocks);
+      ASSERT_TRUE(blocks.factorize_blocks(g.blocks, shift));
+      EXPECT_EQ(blocks.solve(s.b), expected) << "cap " << cap << ", pass " << k;  // bit for bit
+      EXPECT_EQ(blocks.last_report().fallback_used, cap == 3);
+    }
+    EXPECT_EQ(blocks.preallocations(), 1);
+  }
 }
 
 TEST(PetscSolver, UsesGivenDofBlocksAndChecksThem) {

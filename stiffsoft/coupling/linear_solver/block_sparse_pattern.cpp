@@ -122,6 +122,96 @@ void BlockSparsePattern::gather_values(const Eigen::SparseMatrix<double>& upper,
   });
 }
 
+std::int64_t BlockSparsePattern::pieces_at(int I, int J, int count) const {
+  const int i = I - m_row_begin;
+  const std::int64_t at = find_block(m_block_columns, m_row_offsets[i], m_row_offsets[i + 1], J);
+  // Blocks (I, J) … (I, J + count − 1) are consecutive: the row's columns ascend.
+  if (at < 0 || at + count > m_row_offsets[i + 1] || m_block_columns[std::size_t(at + count - 1)] != J + count - 1)
+    throw std::invalid_argument("BlockSparsePattern: blocks (" + std::to_string(I) + ", " + std::to_string(J) +
+                                ") to (" + std::to_string(I) + ", " + std::to_string(J + count - 1) +
+                                ") are not in the analysed pattern");
+  return 9 * at;
+}
+
+void BlockSparsePattern::map_blocks(const BlockUpper& H) {
+  if (H.num_dofs() != 3 * m_num_block_rows)
+    throw std::invalid_argument("BlockSparsePattern::map_blocks: " + std::to_string(H.num_dofs()) +
+                                " DOFs; the analysed pattern has " + std::to_string(3 * m_num_block_rows));
+  // Built aside and kept only when complete: after a throw the last mapping stands.
+  std::vector<int> starts(H.rows.size() + 1, 0);
+  std::vector<std::int64_t> rows;
+  for (int j = 0; j < H.num_blocks(); ++j)
+    for (int k = H.column_starts[j]; k < H.column_starts[j + 1]; ++k) {
+      const int i = H.rows[k];
+      starts[std::size_t(k)] = int(rows.size());
+      for (int p = 0; p < H.size(i) / 3; ++p) {
+        const int I = H.offsets[i] / 3 + p, q_begin = i == j ? p : 0;
+        const bool owned = I >= m_row_begin && I < m_row_end;
+        rows.push_back(owned ? pieces_at(I, H.offsets[j] / 3 + q_begin, H.size(j) / 3 - q_begin) : -1);
+      }
+    }
+  starts.back() = int(rows.size());
+  m_piece_row_starts = std::move(starts);
+  m_piece_rows = std::move(rows);
+  m_mapped = BlockUpper{H.offsets, H.column_starts, H.rows, {}};
+}
+
+void BlockSparsePattern::gather_values(const BlockUpper& H, double shift, std::vector<double>& values) const {
+  if (!maps(H)) throw std::logic_error("BlockSparsePattern::gather_values: H's blocks were not mapped (map_blocks())");
+  values.resize(num_values());
+  // Each stored block of H in 3×3 pieces (p, q), a diagonal block's on or above its diagonal,
+  // by rows of pieces. Block columns in parallel: every stored value has one source.
+  tbb::parallel_for(tbb::blocked_range<int>(0, H.num_blocks(), 16), [&](const tbb::blocked_range<int>& range) {
+    for (int j = range.begin(); j < range.end(); ++j)
+      for (int k = H.column_starts[j]; k < H.column_starts[j + 1]; ++k) {
+        const int i = H.rows[k], si = H.size(i), nq = H.size(j) / 3;
+        const double* block = H.values[k];
+        for (int p = 0; p < si / 3; ++p) {
+          const int q_begin = i == j ? p : 0;
+          const auto entry = [&](int q, int r, int c) { return block[3 * p + r + std::size_t(3 * q + c) * si]; };
+          const std::int64_t at = m_piece_rows[std::size_t(m_piece_row_starts[std::size_t(k)] + p)];
+          if (at >= 0) {
+            double* out = values.data() + at;
+            for (int q = q_begin; q < nq; ++q, out += 9) {
+              if (i == j && q == p) {  // a diagonal piece: its upper triangle, mirrored, the shift on the diagonal
+                for (int c = 0; c < 3; ++c) {
+                  for (int r = 0; r < c; ++r) out[3 * c + r] = out[3 * r + c] = entry(q, r, c);
+                  out[4 * c] = entry(q, c, c) + shift;
+                }
+                continue;
+              }
+              for (int c = 0; c < 3; ++c)
+                for (int r = 0; r < 3; ++r) out[3 * c + r] = entry(q, r, c);
+            }
+          }
+          if (m_storage != BlockStorage::Full) continue;
+          const int I = H.offsets[i] / 3 + p;
+          for (int q = q_begin + (i == j ? 1 : 0); q < nq; ++q) {  // the mirrors (J, I) of the off-diagonal pieces
+            const int J = H.offsets[j] / 3 + q;
+            if (J < m_row_begin || J >= m_row_end) continue;
+            double* out = values.data() + pieces_at(J, I, 1);
+            for (int c = 0; c < 3; ++c)
+              for (int r = 0; r < 3; ++r) out[3 * r + c] = entry(q, r, c);
+          }
+        }
+      }
+  });
+}
+
+Eigen::SparseMatrix<double> BlockSparsePattern::upper(const std::vector<double>& values) const {
+  if (m_row_begin != 0 || m_row_end != m_num_block_rows)
+    throw std::logic_error("BlockSparsePattern::upper: this pattern holds block rows [" +
+                           std::to_string(m_row_begin) + ", " + std::to_string(m_row_end) + ") of " +
+                           std::to_string(m_num_block_rows) + ", not all");
+  const int n = int(m_outer.size()) - 1;
+  Eigen::SparseMatrix<double> H(n, n);
+  H.resizeNonZeros(Eigen::Index(m_inner.size()));
+  std::copy(m_outer.begin(), m_outer.end(), H.outerIndexPtr());
+  std::copy(m_inner.begin(), m_inner.end(), H.innerIndexPtr());
+  for (std::size_t k = 0; k < m_inner.size(); ++k) H.valuePtr()[k] = values[std::size_t(m_target[k])];
+  return H;
+}
+
 bool BlockSparsePattern::same_pattern(const Eigen::SparseMatrix<double>& upper) const {
   if (!upper.isCompressed() || upper.rows() + 1 != std::int64_t(m_outer.size()) ||
       upper.nonZeros() != std::int64_t(m_inner.size()))

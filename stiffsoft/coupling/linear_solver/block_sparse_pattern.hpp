@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <stiffsoft/coupling/linear_solver/block_upper.hpp>
+
 namespace stiffsoft {
 
 /// Which 3×3 blocks a block row stores.
@@ -43,6 +45,21 @@ class BlockSparsePattern {
   /// Copies the values of `upper` (same pattern as analysed) into `values` (resized to
   /// num_values(); entries the CSC lacks are zero), mirroring what the storage needs.
   void gather_values(const Eigen::SparseMatrix<double>& upper, std::vector<double>& values) const;
+  /// Prepares gather_values(H, shift, values) for matrices stored in the blocks of H (their
+  /// numbers aside), whose compressed pattern must be the analysed one (every DOF block a
+  /// multiple of 3 wide): where each row of 3×3 pieces of each stored block goes. Throws
+  /// std::invalid_argument for a block of H the pattern lacks.
+  void map_blocks(const BlockUpper& H);
+  /// Whether H stores the blocks of the last map_blocks().
+  bool maps(const BlockUpper& H) const { return same_blocks(H, m_mapped); }
+  /// The values gather_values(H.compressed(shift), values) copies, read from H's blocks
+  /// without forming the compressed matrix. Every stored value is written. Throws
+  /// std::logic_error unless maps(H).
+  void gather_values(const BlockUpper& H, double shift, std::vector<double>& values) const;
+  /// The analysed upper triangle with the numbers gather_values() would have read from it
+  /// (the inverse of either gather_values()); throws std::logic_error unless this
+  /// pattern holds every row.
+  Eigen::SparseMatrix<double> upper(const std::vector<double>& values) const;
   /// True when `upper` has exactly the scalar pattern this was built from.
   bool same_pattern(const Eigen::SparseMatrix<double>& upper) const;
   /// Blocks per owned block row whose column lies in [column_begin, column_end) (`diagonal`)
@@ -51,11 +68,20 @@ class BlockSparsePattern {
                     std::vector<int>& off_diagonal) const;
 
  private:
+  /// The value index of block (I, J) of owned row I, checking that (I, J + 1) … (I, J + count − 1)
+  /// follow it; throws std::invalid_argument when they are not all in the pattern.
+  std::int64_t pieces_at(int I, int J, int count) const;
+
   BlockStorage m_storage;
   int m_num_block_rows = 0, m_row_begin = 0, m_row_end = 0;
   std::vector<int> m_row_offsets, m_block_columns;
   std::vector<std::int64_t> m_target, m_mirror;  // per scalar nonzero: value index, −1 when not owned/none
   std::vector<int> m_outer, m_inner;             // the analysed scalar pattern
+  // map_blocks(): per stored block of H, where its rows of pieces start in m_piece_rows, and
+  // for each such row the value index of its first piece (−1: not owned)
+  std::vector<int> m_piece_row_starts;
+  std::vector<std::int64_t> m_piece_rows;
+  BlockUpper m_mapped;  // the blocks mapped (no values)
 };
 
 /// The DOF blocks of `upper` when the caller gave none: scanning 3-blocks in order, four

@@ -40,6 +40,11 @@ struct BlockUpper {
   Eigen::VectorXd multiply(const Eigen::VectorXd& x, double shift = 0) const;
 };
 
+/// Whether `a` and `b` store the same blocks over the same DOF blocks (their numbers aside).
+inline bool same_blocks(const BlockUpper& a, const BlockUpper& b) {
+  return a.offsets == b.offsets && a.column_starts == b.column_starts && a.rows == b.rows;
+}
+
 /// Dense blocks copied out of a compressed upper triangle, and their view.
 struct GatheredBlocks {
   GatheredBlocks() = default;

@@ -146,6 +146,7 @@ struct PetscSolver::Impl {
   int preallocations = 0;
   // Fallback (CHOLMOD on the whole system, on every rank).
   Eigen::SparseMatrix<double> upper;  // copy of the last factorised H, kept only with a fallback
+  bool upper_current = true;  // false: `upper` is formed from `values` when the fallback needs it
   CholmodSolver cholmod;
   bool cholmod_analyzed = false;
   bool cholmod_ready = false;  // factorize() already moved to the fallback
@@ -242,6 +243,8 @@ struct PetscSolver::Impl {
   /// Factorises the kept copy of H (`upper`) with CHOLMOD, analysing its pattern once per
   /// pattern; false when H is not positive definite.
   bool factorize_fallback() {
+    if (!upper_current) upper = pattern->upper(values);
+    upper_current = true;
     if (!cholmod_analyzed) cholmod.analyze_pattern(upper);
     cholmod_analyzed = true;
     cholmod_ready = cholmod.factorize(upper);
@@ -341,6 +344,7 @@ void PetscSolver::set_block_sizes(const std::vector<int>& sizes) {
     if (s <= 0 || s % 3 != 0)
       throw std::invalid_argument("PETSc backend: DOF block size " + std::to_string(s) +
                                   "; expected a positive multiple of 3");
+  if (m_impl->given_block_sizes != sizes) m_impl->pattern.reset();  // analyse again under the new sizes
   m_impl->given_block_sizes = sizes;
 }
 
@@ -424,16 +428,47 @@ void PetscSolver::analyze_pattern(const Eigen::SparseMatrix<double>& upper) {
   m.cholmod_analyzed = false;
 }
 
+void PetscSolver::analyze_blocks(const BlockUpper& H) {
+  Impl& m = *m_impl;
+  if (m.pattern && m.pattern->maps(H)) return;
+  analyze_pattern(H.compressed());
+  m.pattern->map_blocks(H);
+}
+
 bool PetscSolver::factorize(const Eigen::SparseMatrix<double>& upper) {
   const auto start = std::chrono::steady_clock::now();
+  Impl& m = *m_impl;
+  if (!m.pattern || !m.pattern->same_pattern(upper)) analyze_pattern(upper);
+  m.pattern->gather_values(upper, m.values);
+  if (m.settings.fallback == KrylovFallback::Cholmod && &upper != &m.upper) m.upper = upper;
+  m.upper_current = true;
+  return factorize_values(m.shell ? &upper : nullptr, start);
+}
+
+bool PetscSolver::factorize_blocks(const BlockUpper& H, double shift) {
+  Impl& m = *m_impl;
+  // Under MPI the fallback needs every rank's whole H, and the shell preconditioner reads the
+  // compressed matrix: those take the compressed copy.
+  if (m.size > 1 || m.shell) {
+    if (m.settings.fallback != KrylovFallback::Cholmod) return factorize(H.compressed(shift));
+    Eigen::SparseMatrix<double> upper = H.compressed(shift);
+    m.upper.swap(upper);  // Eigen 3.4's sparse matrices copy on assignment, even from a temporary
+    return factorize(m.upper);
+  }
+  const auto start = std::chrono::steady_clock::now();
+  if (!m.pattern || !m.pattern->maps(H)) analyze_blocks(H);
+  m.pattern->gather_values(H, shift, m.values);
+  m.upper_current = false;
+  return factorize_values(nullptr, start);
+}
+
+bool PetscSolver::factorize_values(const Eigen::SparseMatrix<double>* upper,
+                                   std::chrono::steady_clock::time_point start) {
   Impl& m = *m_impl;
   m_report = LinearSolveReport{};
   m_report.requested_tolerance = m.rtol;
   m.cholmod_ready = false;
   m.setup_failure.clear();
-  if (!m.pattern || !m.pattern->same_pattern(upper)) analyze_pattern(upper);
-
-  m.pattern->gather_values(upper, m.values);
   const std::vector<int>& offsets = m.pattern->row_offsets();
   const std::vector<int>& columns = m.pattern->block_columns();
   for (int i = 0; i + m.pattern->row_begin() < m.pattern->row_end(); ++i) {
@@ -444,11 +479,10 @@ bool PetscSolver::factorize(const Eigen::SparseMatrix<double>& upper) {
   }
   STIFFSOFT_PETSC(MatAssemblyBegin(m.A, MAT_FINAL_ASSEMBLY));
   STIFFSOFT_PETSC(MatAssemblyEnd(m.A, MAT_FINAL_ASSEMBLY));
-  if (m.settings.fallback == KrylovFallback::Cholmod && &upper != &m.upper) m.upper = upper;
 
   bool indefinite = false;
   if (m.shell) {
-    int ok = m.block_jacobi->compute(upper) ? 1 : 0;
+    int ok = m.block_jacobi->compute(*upper) ? 1 : 0;
     MPI_Allreduce(MPI_IN_PLACE, &ok, 1, MPI_INT, MPI_LAND, m.comm);
     if (!ok) {
       indefinite = true;
@@ -481,13 +515,6 @@ bool PetscSolver::factorize(const Eigen::SparseMatrix<double>& upper) {
   }
   m_report.setup_seconds = seconds_since(start);
   return ok;
-}
-
-bool PetscSolver::factorize_blocks(const BlockUpper& H, double shift) {
-  if (m_impl->settings.fallback != KrylovFallback::Cholmod) return factorize(H.compressed(shift));
-  Eigen::SparseMatrix<double> upper = H.compressed(shift);
-  m_impl->upper.swap(upper);  // Eigen 3.4's sparse matrices copy on assignment, even from a temporary
-  return factorize(m_impl->upper);
 }
 
 Eigen::VectorXd PetscSolver::solve(const Eigen::VectorXd& rhs) {

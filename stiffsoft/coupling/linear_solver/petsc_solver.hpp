@@ -2,6 +2,7 @@
 /// @file PETSc Krylov solvers (KSP) on a block-sparse matrix with 3×3 blocks (BAIJ or SBAIJ,
 /// bs = 3; MPIBAIJ over PETSC_COMM_WORLD under mpirun) behind the LinearSolver interface.
 
+#include <chrono>
 #include <memory>
 #include <optional>
 #include <string>
@@ -62,7 +63,11 @@ class PetscSolver final : public LinearSolver {
   /// preconditioner failed (block-Jacobi block or ICC pivot not positive) and the fallback,
   /// if any, found H not positive definite either.
   bool factorize(const Eigen::SparseMatrix<double>& upper) override;
-  /// See LinearSolver; the compressed H is built where the fallback keeps it, not copied there.
+  /// See LinearSolver; keeps everything when given the blocks it analysed last.
+  void analyze_blocks(const BlockUpper& H) override;
+  /// See LinearSolver. On one rank (without the "vpbjacobi" shell) the values are copied from
+  /// H's blocks into PETSc's 3×3 blocks without a compressed matrix; the fallback forms one
+  /// only if it runs. Otherwise the compressed H is built where the fallback keeps it.
   bool factorize_blocks(const BlockUpper& H, double shift) override;
   /// See LinearSolver.
   Eigen::VectorXd solve(const Eigen::VectorXd& b) override;
@@ -80,6 +85,10 @@ class PetscSolver final : public LinearSolver {
   std::pair<int, int> owned_rows() const;
 
  private:
+  /// factorize()'s work once the values are in place: the PETSc matrix, the preconditioner, the
+  /// fallback on failure. `upper` (the compressed H) only for the shell preconditioner.
+  bool factorize_values(const Eigen::SparseMatrix<double>* upper, std::chrono::steady_clock::time_point start);
+
   struct Impl;
   std::unique_ptr<Impl> m_impl;
 };
