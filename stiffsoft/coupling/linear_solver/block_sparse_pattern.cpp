@@ -156,9 +156,8 @@ void BlockSparsePattern::map_blocks(const BlockUpper& H) {
   m_mapped = BlockUpper{H.offsets, H.column_starts, H.rows, {}};
 }
 
-void BlockSparsePattern::gather_values(const BlockUpper& H, double shift, std::vector<double>& values) const {
+void BlockSparsePattern::gather_values(const BlockUpper& H, double shift, double* values) const {
   if (!maps(H)) throw std::logic_error("BlockSparsePattern::gather_values: H's blocks were not mapped (map_blocks())");
-  values.resize(num_values());
   // Each stored block of H in 3×3 pieces (p, q), a diagonal block's on or above its diagonal,
   // by rows of pieces. Block columns in parallel: every stored value has one source.
   tbb::parallel_for(tbb::blocked_range<int>(0, H.num_blocks(), 16), [&](const tbb::blocked_range<int>& range) {
@@ -171,7 +170,7 @@ void BlockSparsePattern::gather_values(const BlockUpper& H, double shift, std::v
           const auto entry = [&](int q, int r, int c) { return block[3 * p + r + std::size_t(3 * q + c) * si]; };
           const std::int64_t at = m_piece_rows[std::size_t(m_piece_row_starts[std::size_t(k)] + p)];
           if (at >= 0) {
-            double* out = values.data() + at;
+            double* out = values + at;
             for (int q = q_begin; q < nq; ++q, out += 9) {
               if (i == j && q == p) {  // a diagonal piece: its upper triangle, mirrored, the shift on the diagonal
                 for (int c = 0; c < 3; ++c) {
@@ -189,7 +188,7 @@ void BlockSparsePattern::gather_values(const BlockUpper& H, double shift, std::v
           for (int q = q_begin + (i == j ? 1 : 0); q < nq; ++q) {  // the mirrors (J, I) of the off-diagonal pieces
             const int J = H.offsets[j] / 3 + q;
             if (J < m_row_begin || J >= m_row_end) continue;
-            double* out = values.data() + pieces_at(J, I, 1);
+            double* out = values + pieces_at(J, I, 1);
             for (int c = 0; c < 3; ++c)
               for (int r = 0; r < 3; ++r) out[3 * r + c] = entry(q, r, c);
           }
@@ -198,7 +197,7 @@ void BlockSparsePattern::gather_values(const BlockUpper& H, double shift, std::v
   });
 }
 
-Eigen::SparseMatrix<double> BlockSparsePattern::upper(const std::vector<double>& values) const {
+Eigen::SparseMatrix<double> BlockSparsePattern::upper(const double* values) const {
   if (m_row_begin != 0 || m_row_end != m_num_block_rows)
     throw std::logic_error("BlockSparsePattern::upper: this pattern holds block rows [" +
                            std::to_string(m_row_begin) + ", " + std::to_string(m_row_end) + ") of " +

@@ -53,13 +53,14 @@ class BlockSparsePattern {
   /// Whether H stores the blocks of the last map_blocks().
   bool maps(const BlockUpper& H) const { return same_blocks(H, m_mapped); }
   /// The values gather_values(H.compressed(shift), values) copies, read from H's blocks
-  /// without forming the compressed matrix. Every stored value is written. Throws
+  /// into num_values() numbers at `values` without forming the compressed matrix. Every one
+  /// is written. Throws
   /// std::logic_error unless maps(H).
-  void gather_values(const BlockUpper& H, double shift, std::vector<double>& values) const;
+  void gather_values(const BlockUpper& H, double shift, double* values) const;
   /// The analysed upper triangle with the numbers gather_values() would have read from it
   /// (the inverse of either gather_values()); throws std::logic_error unless this
   /// pattern holds every row.
-  Eigen::SparseMatrix<double> upper(const std::vector<double>& values) const;
+  Eigen::SparseMatrix<double> upper(const double* values) const;
   /// True when `upper` has exactly the scalar pattern this was built from.
   bool same_pattern(const Eigen::SparseMatrix<double>& upper) const;
   /// Blocks per owned block row whose column lies in [column_begin, column_end) (`diagonal`)

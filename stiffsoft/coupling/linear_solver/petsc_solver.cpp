@@ -146,7 +146,10 @@ struct PetscSolver::Impl {
   int preallocations = 0;
   // Fallback (CHOLMOD on the whole system, on every rank).
   Eigen::SparseMatrix<double> upper;  // copy of the last factorised H, kept only with a fallback
-  bool upper_current = true;  // false: `upper` is formed from `values` when the fallback needs it
+  bool upper_current = true;  // false: `upper` is formed from the stored values when the fallback needs it
+  // On one rank, once PETSc's own value array of the matrix is seen to hold the pattern's values
+  // in the pattern's layout: the values go straight into it, without MatSetValuesBlocked.
+  enum class InPlace { Unchecked, Yes, No } in_place = InPlace::Unchecked;
   CholmodSolver cholmod;
   bool cholmod_analyzed = false;
   bool cholmod_ready = false;  // factorize() already moved to the fallback
@@ -161,6 +164,44 @@ struct PetscSolver::Impl {
     VecDestroy(&r);
     VecDestroy(&x_all);
     VecScatterDestroy(&to_all);
+  }
+
+  /// Calls f(a) with the value array of A, a sequential SBAIJ or BAIJ matrix (false otherwise:
+  /// f is not called).
+  template <class F>
+  bool with_petsc_values(F&& f) {
+    PetscBool sbaij = PETSC_FALSE, baij = PETSC_FALSE;
+    STIFFSOFT_PETSC(PetscObjectTypeCompare((PetscObject)A, MATSEQSBAIJ, &sbaij));
+    STIFFSOFT_PETSC(PetscObjectTypeCompare((PetscObject)A, MATSEQBAIJ, &baij));
+    PetscScalar* a = nullptr;
+    if (sbaij) {
+      STIFFSOFT_PETSC(MatSeqSBAIJGetArray(A, &a));
+      f(a);
+      STIFFSOFT_PETSC(MatSeqSBAIJRestoreArray(A, &a));
+    } else if (baij) {
+      STIFFSOFT_PETSC(MatSeqBAIJGetArray(A, &a));
+      f(a);
+      STIFFSOFT_PETSC(MatSeqBAIJRestoreArray(A, &a));
+    }
+    return sbaij || baij;
+  }
+
+  /// Whether A's value array holds `values` in the pattern's layout: its block rows and columns
+  /// are the pattern's and its numbers equal (checked once per analysis, after the first
+  /// assembly through MatSetValuesBlocked).
+  bool holds_values_in_place() {
+    PetscInt rows = 0;
+    const PetscInt *ia = nullptr, *ja = nullptr;
+    PetscBool done = PETSC_FALSE;
+    STIFFSOFT_PETSC(MatGetRowIJ(A, 0, PETSC_FALSE, PETSC_TRUE, &rows, &ia, &ja, &done));
+    bool same = done && rows == pattern->num_block_rows() &&
+                std::equal(pattern->row_offsets().begin(), pattern->row_offsets().end(), ia) &&
+                std::equal(pattern->block_columns().begin(), pattern->block_columns().end(), ja);
+    STIFFSOFT_PETSC(MatRestoreRowIJ(A, 0, PETSC_FALSE, PETSC_TRUE, &rows, &ia, &ja, &done));
+    if (!same) return false;
+    return with_petsc_values([&](const PetscScalar* a) {
+             same = std::equal(values.begin(), values.end(), a);
+           }) && same;
   }
 
   PC pc() const {
@@ -243,7 +284,13 @@ struct PetscSolver::Impl {
   /// Factorises the kept copy of H (`upper`) with CHOLMOD, analysing its pattern once per
   /// pattern; false when H is not positive definite.
   bool factorize_fallback() {
-    if (!upper_current) upper = pattern->upper(values);
+    if (!upper_current) {
+      if (in_place == InPlace::Yes) {
+        with_petsc_values([&](const PetscScalar* a) { upper = pattern->upper(a); });
+      } else {
+        upper = pattern->upper(values.data());
+      }
+    }
     upper_current = true;
     if (!cholmod_analyzed) cholmod.analyze_pattern(upper);
     cholmod_analyzed = true;
@@ -381,6 +428,7 @@ void PetscSolver::analyze_pattern(const Eigen::SparseMatrix<double>& upper) {
   // step's pattern): the matrix, its preallocation and the preconditioner's symbolic set-up stay.
   if (m.pattern && m.n == n && sizes == m.block_sizes && m.pattern->same_pattern(upper)) return;
   m.block_sizes = std::move(sizes);
+  m.in_place = Impl::InPlace::Unchecked;
   const std::vector<int> bounds = split_rows(m.block_sizes, m.size);
   m.n = n;
   m.row_begin = bounds[m.rank];
@@ -442,7 +490,7 @@ bool PetscSolver::factorize(const Eigen::SparseMatrix<double>& upper) {
   m.pattern->gather_values(upper, m.values);
   if (m.settings.fallback == KrylovFallback::Cholmod && &upper != &m.upper) m.upper = upper;
   m.upper_current = true;
-  return factorize_values(m.shell ? &upper : nullptr, start);
+  return factorize_values(m.shell ? &upper : nullptr, false, start);
 }
 
 bool PetscSolver::factorize_blocks(const BlockUpper& H, double shift) {
@@ -457,28 +505,41 @@ bool PetscSolver::factorize_blocks(const BlockUpper& H, double shift) {
   }
   const auto start = std::chrono::steady_clock::now();
   if (!m.pattern || !m.pattern->maps(H)) analyze_blocks(H);
-  m.pattern->gather_values(H, shift, m.values);
+  const bool in_petsc = m.in_place == Impl::InPlace::Yes;
+  if (in_petsc) {
+    m.with_petsc_values([&](PetscScalar* a) { m.pattern->gather_values(H, shift, a); });
+    // Assembling nothing marks A changed (its state), so that the preconditioner is rebuilt.
+    STIFFSOFT_PETSC(MatAssemblyBegin(m.A, MAT_FINAL_ASSEMBLY));
+    STIFFSOFT_PETSC(MatAssemblyEnd(m.A, MAT_FINAL_ASSEMBLY));
+  } else {
+    m.values.resize(m.pattern->num_values());
+    m.pattern->gather_values(H, shift, m.values.data());
+  }
   m.upper_current = false;
-  return factorize_values(nullptr, start);
+  return factorize_values(nullptr, in_petsc, start);
 }
 
-bool PetscSolver::factorize_values(const Eigen::SparseMatrix<double>* upper,
+bool PetscSolver::factorize_values(const Eigen::SparseMatrix<double>* upper, bool in_petsc,
                                    std::chrono::steady_clock::time_point start) {
   Impl& m = *m_impl;
   m_report = LinearSolveReport{};
   m_report.requested_tolerance = m.rtol;
   m.cholmod_ready = false;
   m.setup_failure.clear();
-  const std::vector<int>& offsets = m.pattern->row_offsets();
-  const std::vector<int>& columns = m.pattern->block_columns();
-  for (int i = 0; i + m.pattern->row_begin() < m.pattern->row_end(); ++i) {
-    const PetscInt I = m.pattern->row_begin() + i;
-    const int count = offsets[i + 1] - offsets[i];
-    STIFFSOFT_PETSC(MatSetValuesBlocked(m.A, 1, &I, count, columns.data() + offsets[i],
-                                        m.values.data() + 9 * std::size_t(offsets[i]), INSERT_VALUES));
+  if (!in_petsc) {
+    const std::vector<int>& offsets = m.pattern->row_offsets();
+    const std::vector<int>& columns = m.pattern->block_columns();
+    for (int i = 0; i + m.pattern->row_begin() < m.pattern->row_end(); ++i) {
+      const PetscInt I = m.pattern->row_begin() + i;
+      const int count = offsets[i + 1] - offsets[i];
+      STIFFSOFT_PETSC(MatSetValuesBlocked(m.A, 1, &I, count, columns.data() + offsets[i],
+                                          m.values.data() + 9 * std::size_t(offsets[i]), INSERT_VALUES));
+    }
+    STIFFSOFT_PETSC(MatAssemblyBegin(m.A, MAT_FINAL_ASSEMBLY));
+    STIFFSOFT_PETSC(MatAssemblyEnd(m.A, MAT_FINAL_ASSEMBLY));
+    if (m.in_place == Impl::InPlace::Unchecked && m.size == 1)
+      m.in_place = m.holds_values_in_place() ? Impl::InPlace::Yes : Impl::InPlace::No;
   }
-  STIFFSOFT_PETSC(MatAssemblyBegin(m.A, MAT_FINAL_ASSEMBLY));
-  STIFFSOFT_PETSC(MatAssemblyEnd(m.A, MAT_FINAL_ASSEMBLY));
 
   bool indefinite = false;
   if (m.shell) {

@@ -85,9 +85,11 @@ class PetscSolver final : public LinearSolver {
   std::pair<int, int> owned_rows() const;
 
  private:
-  /// factorize()'s work once the values are in place: the PETSc matrix, the preconditioner, the
-  /// fallback on failure. `upper` (the compressed H) only for the shell preconditioner.
-  bool factorize_values(const Eigen::SparseMatrix<double>* upper, std::chrono::steady_clock::time_point start);
+  /// factorize()'s work once the values are gathered (into PETSc's own array when `in_petsc`,
+  /// else into the pattern's): the PETSc matrix, the preconditioner, the fallback on failure.
+  /// `upper` (the compressed H) only for the shell preconditioner.
+  bool factorize_values(const Eigen::SparseMatrix<double>* upper, bool in_petsc,
+                        std::chrono::steady_clock::time_point start);
 
   struct Impl;
   std::unique_ptr<Impl> m_impl;
