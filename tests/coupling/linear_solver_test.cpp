@@ -335,8 +335,11 @@ TEST(PetscSolver, FactorisesBlocksInPlaceAsItsCompressedCopyAndFallsBackFromThem
   const LinearSystem s = load_linear_system(kDataDir, kSystems[1]);
   const GatheredBlocks g = gather_blocks(s.upper, infer_block_sizes(s.upper));
   const double shift = 1e-3 * s.upper.diagonal().cwiseAbs().maxCoeff();
-  for (const int cap : {1000, 3}) {  // a cap of 3 CG iterations sends every solve to the fallback
+  // ICC on SBAIJ (upper blocks) and Jacobi on BAIJ (every block); a cap of 3 CG iterations
+  // sends every solve to the fallback.
+  for (const auto& [pc, cap] : std::vector<std::pair<std::string, int>>{{"icc", 1000}, {"icc", 3}, {"jacobi", 1000}}) {
     PetscSolverSettings settings;
+    settings.pc_type = pc;
     settings.relative_tolerance = 1e-10;
     settings.max_iterations = cap;
     PetscSolver compressed(settings), blocks(settings);
@@ -346,7 +349,7 @@ TEST(PetscSolver, FactorisesBlocksInPlaceAsItsCompressedCopyAndFallsBackFromThem
       const Eigen::VectorXd expected = compressed.solve(s.b);
       blocks.analyze_blocks(g.blocks);
       ASSERT_TRUE(blocks.factorize_blocks(g.blocks, (k + 1) * shift));
-      EXPECT_EQ(blocks.solve(s.b), expected) << "cap " << cap << ", pass " << k;  // bit for bit
+      EXPECT_EQ(blocks.solve(s.b), expected) << pc << ", cap " << cap << ", pass " << k;  // bit for bit
       EXPECT_EQ(blocks.last_report().fallback_used, cap == 3);
     }
     EXPECT_EQ(blocks.preallocations(), 1);

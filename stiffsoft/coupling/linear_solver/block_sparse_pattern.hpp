@@ -52,10 +52,9 @@ class BlockSparsePattern {
   void map_blocks(const BlockUpper& H);
   /// Whether H stores the blocks of the last map_blocks().
   bool maps(const BlockUpper& H) const { return same_blocks(H, m_mapped); }
-  /// The values gather_values(H.compressed(shift), values) copies, read from H's blocks
-  /// into num_values() numbers at `values` without forming the compressed matrix. Every one
-  /// is written. Throws
-  /// std::logic_error unless maps(H).
+  /// The values gather_values(H.compressed(shift), values) copies, read from H's blocks into
+  /// the num_values() numbers at `values` without forming the compressed matrix (every one is
+  /// written). Throws std::logic_error unless maps(H).
   void gather_values(const BlockUpper& H, double shift, double* values) const;
   /// The analysed upper triangle with the numbers gather_values() would have read from it
   /// (the inverse of either gather_values()); throws std::logic_error unless this

@@ -281,8 +281,9 @@ struct PetscSolver::Impl {
     for (Vec& v : modes) STIFFSOFT_PETSC(VecDestroy(&v));
   }
 
-  /// Factorises the kept copy of H (`upper`) with CHOLMOD, analysing its pattern once per
-  /// pattern; false when H is not positive definite.
+  /// Factorises the kept copy of H (`upper`, formed first from the stored values when
+  /// factorize_blocks() left it out) with CHOLMOD, analysing its pattern once per pattern;
+  /// false when H is not positive definite.
   bool factorize_fallback() {
     if (!upper_current) {
       if (in_place == InPlace::Yes) {
