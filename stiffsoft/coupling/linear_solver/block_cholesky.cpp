@@ -189,9 +189,8 @@ void BlockCholesky::analyze(const Eigen::SparseMatrix<double>& upper, const std:
 }
 
 void BlockCholesky::analyze(const BlockUpper& H) {
-  if (analysed() && H.offsets == m_factorised.offsets && H.column_starts == m_factorised.column_starts &&
-      H.rows == m_factorised.rows)
-    return;  // the pattern analysed last (a new time step's first Hessian, often)
+  // The pattern analysed last (a new time step's first Hessian, often) keeps its analysis.
+  if (analysed() && same_blocks(H, m_factorised)) return;
   const int nb = H.num_blocks();
   std::vector<int> sizes(nb);
   for (int b = 0; b < nb; ++b) sizes[b] = H.size(b);
@@ -364,7 +363,7 @@ bool BlockCholesky::factorize(const Eigen::SparseMatrix<double>& upper) {
 
 bool BlockCholesky::factorize(const BlockUpper& H, double shift) {
   if (!analysed()) throw std::logic_error("BlockCholesky::factorize before analyze");
-  if (H.offsets != m_factorised.offsets || H.column_starts != m_factorised.column_starts || H.rows != m_factorised.rows)
+  if (!same_blocks(H, m_factorised))
     throw std::invalid_argument("BlockCholesky::factorize: not the block pattern analyze() was given");
   const std::size_t blocks = m_target.size(), nb = m_columns.size();
   const auto numbers = [&](std::size_t k) { return m_input_at[k + 1] - m_input_at[k]; };

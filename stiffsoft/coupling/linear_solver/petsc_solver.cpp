@@ -505,7 +505,7 @@ bool PetscSolver::factorize_blocks(const BlockUpper& H, double shift) {
     return factorize(m.upper);
   }
   const auto start = std::chrono::steady_clock::now();
-  if (!m.pattern || !m.pattern->maps(H)) analyze_blocks(H);
+  analyze_blocks(H);  // nothing to do for the blocks analysed last
   const bool in_petsc = m.in_place == Impl::InPlace::Yes;
   if (in_petsc) {
     m.with_petsc_values([&](PetscScalar* a) { m.pattern->gather_values(H, shift, a); });
