@@ -102,12 +102,19 @@ Eigen::VectorXd ElasticEnergy::gradient(const Eigen::Ref<const Eigen::VectorXd>&
 
 ElementHessian ElasticEnergy::element_hessian(int e, const Eigen::Ref<const Eigen::VectorXd>& x,
                                               bool project_psd) const {
+  ElementHessian out;
+  element_hessian(e, x, project_psd, 1.0, out);
+  return out;
+}
+
+void ElasticEnergy::element_hessian(int e, const Eigen::Ref<const Eigen::VectorXd>& x, bool project_psd,
+                                    double weight, ElementHessian& out) const {
   if (e < 0 || e >= num_elements())
     throw std::invalid_argument("libfem: element_hessian: element " + std::to_string(e) +
                                 " out of range; expected 0 <= e < " + std::to_string(num_elements()));
   check_size(x, "x");
-  return {tet_hessian(m_elements[e], *m_material, element_positions(e, x), project_psd),
-          {m_T(e, 0), m_T(e, 1), m_T(e, 2), m_T(e, 3)}};
+  tet_hessian(m_elements[e], *m_material, element_positions(e, x), project_psd, weight, out.H);
+  out.nodes = {m_T(e, 0), m_T(e, 1), m_T(e, 2), m_T(e, 3)};
 }
 
 Eigen::SparseMatrix<double> ElasticEnergy::hessian(const Eigen::Ref<const Eigen::VectorXd>& x,

@@ -64,6 +64,10 @@ class ElasticEnergy {
   /// = H.block<3,3>(3a, 3b) goes to global nodes (nodes[a], nodes[b]). Throws
   /// std::invalid_argument for e out of range or x of the wrong size.
   ElementHessian element_hessian(int e, const Eigen::Ref<const Eigen::VectorXd>& x, bool project_psd) const;
+  /// element_hessian(e, x, project_psd) weighted by `weight` (an incremental potential's β h²),
+  /// formed in place in `out`: what a coupled solver's parallel assembly calls per element.
+  void element_hessian(int e, const Eigen::Ref<const Eigen::VectorXd>& x, bool project_psd, double weight,
+                       ElementHessian& out) const;
   /// The global Hessian, 3N × 3N, both triangles stored (N/m). A convenience for small problems
   /// and tests; a coupled solver scatters element_hessian blocks itself.
   Eigen::SparseMatrix<double> hessian(const Eigen::Ref<const Eigen::VectorXd>& x, bool project_psd) const;

@@ -65,19 +65,26 @@ Vector12d tet_gradient(const TetElement& element, const Material& material, cons
 
 Matrix12d tet_hessian(const TetElement& element, const Material& material, const Vector12d& x,
                       bool project_psd) {
+  Matrix12d H;
+  tet_hessian(element, material, x, project_psd, 1.0, H);
+  return H;
+}
+
+void tet_hessian(const TetElement& element, const Material& material, const Vector12d& x, bool project_psd,
+                 double weight, Matrix12d& H) {
   const Matrix9d dPdF = material.dPdF(deformation_gradient(element, x), project_psd);
   // (∂F/∂x)ᵀ ∂P/∂F ∂F/∂x without forming ∂F/∂x: ∂F_ij/∂x_{a,i} = β_a[j] with β_a (a = 1..3) the
-  // rows of D_m⁻¹, so block (a, b) = V Σ_{j,l} β_a[j] β_b[l] (∂P/∂F)_{jl}, (∂P/∂F)_{jl} the 3×3
+  // rows of D_m⁻¹, so block (a, b) = w V Σ_{j,l} β_a[j] β_b[l] (∂P/∂F)_{jl}, (∂P/∂F)_{jl} the 3×3
   // block at rows 3j, columns 3l. Node 0's β_0 = −(β_1 + β_2 + β_3) makes its blocks the
   // negated sums of the others': the nine blocks of nodes 1..3 are formed (six, the matrix being
   // symmetric), the rest summed.
   const Eigen::Matrix3d& beta = element.D_m_inv;
-  std::array<Eigen::Matrix<double, 3, 9>, 3> T;  // T_a = V Σ_j β_a[j] (rows 3j..3j+2 of ∂P/∂F)
+  const double w_volume = weight * element.volume;
+  std::array<Eigen::Matrix<double, 3, 9>, 3> T;  // T_a = w V Σ_j β_a[j] (rows 3j..3j+2 of ∂P/∂F)
   for (int a = 0; a < 3; ++a) {
-    T[a] = element.volume * beta(a, 0) * dPdF.middleRows<3>(0);
-    for (int j = 1; j < 3; ++j) T[a] += element.volume * beta(a, j) * dPdF.middleRows<3>(3 * j);
+    T[a] = w_volume * beta(a, 0) * dPdF.middleRows<3>(0);
+    for (int j = 1; j < 3; ++j) T[a] += w_volume * beta(a, j) * dPdF.middleRows<3>(3 * j);
   }
-  Matrix12d H;
   for (int a = 1; a < 4; ++a)
     for (int b = a; b < 4; ++b) {
       Eigen::Matrix3d H_ab = beta(b - 1, 0) * T[a - 1].leftCols<3>();
@@ -91,7 +98,6 @@ Matrix12d tet_hessian(const TetElement& element, const Material& material, const
     H.block<3, 3>(0, 3 * a) = H_a0.transpose();
   }
   H.block<3, 3>(0, 0) = -(H.block<3, 3>(3, 0) + H.block<3, 3>(6, 0) + H.block<3, 3>(9, 0));
-  return H;
 }
 
 }  // namespace stiffsoft::fem

@@ -40,4 +40,10 @@ Vector12d tet_gradient(const TetElement& element, const Material& material, cons
 Matrix12d tet_hessian(const TetElement& element, const Material& material, const Vector12d& x,
                       bool project_psd);
 
+/// w ∂²(V ψ)/∂x² into H, formed in place: the element Hessian weighted as in an incremental
+/// potential (w = β h²) without a 12×12 copy or a scaling pass. w = 1 gives tet_hessian's
+/// value bit for bit.
+void tet_hessian(const TetElement& element, const Material& material, const Vector12d& x, bool project_psd,
+                 double weight, Matrix12d& H);
+
 }  // namespace stiffsoft::fem

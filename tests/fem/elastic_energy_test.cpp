@@ -94,6 +94,25 @@ TEST(ElasticEnergy, ElementHessiansScatterToTheGlobalHessian) {
   EXPECT_THROW(energy.element_hessian(energy.num_elements(), x, true), std::invalid_argument);
 }
 
+// The weighted form a coupled solver assembles: weight 1 is the plain element Hessian bit for
+// bit, any other weight scales it (to round-off: the weight multiplies the volume first).
+TEST(ElasticEnergy, WeightedElementHessiansAreTheScaledOnes) {
+  const ElasticEnergy energy = small_block("stable_neo_hookean");
+  const Eigen::VectorXd x = perturbed(energy, 0.01, 11);
+  const double weight = 1.0 / (240.0 * 240.0);
+  for (int e = 0; e < energy.num_elements(); ++e) {
+    const ElementHessian plain = energy.element_hessian(e, x, true);
+    ElementHessian once, weighted;
+    energy.element_hessian(e, x, true, 1.0, once);
+    EXPECT_EQ(once.H, plain.H) << "element " << e;
+    EXPECT_EQ(once.nodes, plain.nodes) << "element " << e;
+    energy.element_hessian(e, x, true, weight, weighted);
+    EXPECT_LT(relative_error(Eigen::MatrixXd(weighted.H), Eigen::MatrixXd(weight * plain.H)), 1e-14) << "element " << e;
+  }
+  ElementHessian out;
+  EXPECT_THROW(energy.element_hessian(-1, x, true, weight, out), std::invalid_argument);
+}
+
 TEST(ElasticEnergy, ValueIsTheOrderedSumOfElementValues) {
   TetMesh mesh = box_tet_mesh({1, 1, 1}, {6, 6, 6});  // 1296 tets: several TBB chunks
   const ElasticEnergy energy(mesh.X, mesh.T, make_material("stable_neo_hookean", kE, kNu));

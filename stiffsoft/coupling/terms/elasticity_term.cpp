@@ -54,10 +54,7 @@ void ElasticityTerm::add_hessian(const Configuration& c, BlockHessian& H) const 
     const Eigen::VectorXd x = body_positions(body, c.q);
     assemble_in_chunks<fem::ElementHessian>(
         std::size_t(body.energy->num_elements()),
-        [&](std::size_t e, fem::ElementHessian& out) {
-          out = body.energy->element_hessian(int(e), x, true);
-          out.H *= m_scale;
-        },
+        [&](std::size_t e, fem::ElementHessian& out) { body.energy->element_hessian(int(e), x, true, m_scale, out); },
         [&](std::size_t, const fem::ElementHessian& eh) {
           std::array<int, 4> block;
           for (int a = 0; a < 4; ++a) block[a] = nodes.block[body.node_begin + eh.nodes[a]];
