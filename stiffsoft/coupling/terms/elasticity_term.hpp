@@ -1,6 +1,7 @@
 #pragma once
 /// @file β h² Σ_e V_e ψ(F_e): the elastic energy of the soft bodies' tetrahedra (libfem).
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -32,11 +33,26 @@ class ElasticityTerm final : public EnergyTerm {
   std::vector<int> inverted_per_body(const Eigen::VectorXd& q) const;
 
  private:
+  /// Where an element's 3×3 blocks go: a body's Hessian has a fixed pattern (its mesh's node
+  /// pairs), so each element block has a place in the body's own sum, found once; the sums then
+  /// enter the global Hessian once per node pair instead of once per element touching it.
+  struct ElementSlots {
+    /// Per local pair k of kLocalPairs: its node pair's place in SoftBody::sums, −1 where a node
+    /// has no DOFs.
+    std::array<int, 10> pair;
+    /// Whether pair k goes in transposed (its first local node has the higher DOF block).
+    std::array<bool, 10> transposed;
+  };
   struct SoftBody {
     int index;  // in Model::bodies
     int node_begin;
     std::unique_ptr<fem::ElasticEnergy> energy;
+    std::vector<ElementSlots> slots;             // per element
+    std::vector<std::array<int, 2>> pair_blocks;  // DOF blocks (row ≤ column) of each node pair
+    mutable std::vector<double> sums;            // 9 per node pair: Σ of its element blocks (scratch)
   };
+  /// Finds every element block's node pair and the body's pattern (constructor).
+  void index_pairs(SoftBody& body) const;
   /// The body's node positions from q, flattened node-major (3N).
   Eigen::VectorXd body_positions(const SoftBody& body, const Eigen::VectorXd& q) const;
 
