@@ -7,8 +7,6 @@
 
 namespace stiffsoft::contact {
 
-Eigen::Matrix<double, 2, 12> tangent_operator(const FrictionStencil& f) { return f.P.transpose() * f.Gamma; }
-
 Eigen::Matrix<double, 3, 2> orthonormal_complement(const Eigen::Vector3d& n) {
   // Cross with the axis least aligned with n keeps the first tangent well conditioned.
   Eigen::Index axis;
@@ -45,6 +43,7 @@ FrictionStencil make_friction_stencil(const Stencil& s, const Vector12d& x_lag, 
     if (!(n.squaredNorm() > 0.0)) n = Eigen::Vector3d::UnitZ();
   }
   f.P = orthonormal_complement(n.normalized());
+  f.T = f.P.transpose() * f.Gamma;
   return f;
 }
 

@@ -21,10 +21,12 @@ struct FrictionStencil {
   Eigen::Matrix<double, 3, 2> P = Eigen::Matrix<double, 3, 2>::Zero();
   /// relative closest-point displacement operator, 3×12: u₃ = Γ dx = Σ c_i dx_i
   Eigen::Matrix<double, 3, 12> Gamma = Eigen::Matrix<double, 3, 12>::Zero();
+  /// Pᵀ Γ, 2×12, formed once with the stencil: every evaluation of the lagged friction reads it
+  Eigen::Matrix<double, 2, 12> T = Eigen::Matrix<double, 2, 12>::Zero();
 };
 
 /// Tangential operator T = Pᵀ Γ, 2×12: u = T dx.
-Eigen::Matrix<double, 2, 12> tangent_operator(const FrictionStencil& f);
+inline const Eigen::Matrix<double, 2, 12>& tangent_operator(const FrictionStencil& f) { return f.T; }
 
 /// An orthonormal basis (3×2) of the plane orthogonal to the unit vector n.
 Eigen::Matrix<double, 3, 2> orthonormal_complement(const Eigen::Vector3d& n);
