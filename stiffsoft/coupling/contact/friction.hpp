@@ -21,7 +21,8 @@ struct FrictionStencil {
   Eigen::Matrix<double, 3, 2> P = Eigen::Matrix<double, 3, 2>::Zero();
   /// relative closest-point displacement operator, 3×12: u₃ = Γ dx = Σ c_i dx_i
   Eigen::Matrix<double, 3, 12> Gamma = Eigen::Matrix<double, 3, 12>::Zero();
-  /// Pᵀ Γ, 2×12, formed once with the stencil: every evaluation of the lagged friction reads it
+  /// Pᵀ Γ, 2×12, formed once by make_friction_stencil (a stencil assembled by hand must set it
+  /// too): every evaluation of the lagged friction reads it
   Eigen::Matrix<double, 2, 12> T = Eigen::Matrix<double, 2, 12>::Zero();
 };
 
