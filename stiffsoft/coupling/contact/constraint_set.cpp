@@ -2,6 +2,7 @@
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <cmath>
@@ -125,7 +126,10 @@ std::vector<ContactConstraint> build_constraints(const Model& model, const Eigen
 
   std::vector<ContactConstraint> all;
   for (const auto& l : local) all.insert(all.end(), l.begin(), l.end());
-  std::sort(all.begin(), all.end(), less);
+  // Constraints with equal keys differ only in their weights, integer multiplicities summed
+  // exactly below: the merged list is the same whatever the sort's order among them, and so
+  // whatever the thread count.
+  tbb::parallel_sort(all.begin(), all.end(), less);
   std::vector<ContactConstraint> merged;
   for (const ContactConstraint& c : all) {
     if (!merged.empty() && !less(merged.back(), c)) {
