@@ -138,21 +138,30 @@ void BlockSparsePattern::map_blocks(const BlockUpper& H) {
     throw std::invalid_argument("BlockSparsePattern::map_blocks: " + std::to_string(H.num_dofs()) +
                                 " DOFs; the analysed pattern has " + std::to_string(3 * m_num_block_rows));
   // Built aside and kept only when complete: after a throw the last mapping stands.
-  std::vector<int> starts(H.rows.size() + 1, 0);
-  std::vector<std::int64_t> rows;
+  std::vector<int> starts(H.rows.size() + 1, 0), mirror_starts(H.rows.size() + 1, 0);
+  std::vector<std::int64_t> rows, mirrors;
   for (int j = 0; j < H.num_blocks(); ++j)
     for (int k = H.column_starts[j]; k < H.column_starts[j + 1]; ++k) {
-      const int i = H.rows[k];
+      const int i = H.rows[k], nq = H.size(j) / 3;
       starts[std::size_t(k)] = int(rows.size());
+      mirror_starts[std::size_t(k)] = int(mirrors.size());
       for (int p = 0; p < H.size(i) / 3; ++p) {
         const int I = H.offsets[i] / 3 + p, q_begin = i == j ? p : 0;
         const bool owned = I >= m_row_begin && I < m_row_end;
-        rows.push_back(owned ? pieces_at(I, H.offsets[j] / 3 + q_begin, H.size(j) / 3 - q_begin) : -1);
+        rows.push_back(owned ? pieces_at(I, H.offsets[j] / 3 + q_begin, nq - q_begin) : -1);
+        if (m_storage != BlockStorage::Full) continue;
+        for (int q = q_begin + (i == j ? 1 : 0); q < nq; ++q) {  // the mirrors (J, I) of the off-diagonal pieces
+          const int J = H.offsets[j] / 3 + q;
+          mirrors.push_back(J >= m_row_begin && J < m_row_end ? pieces_at(J, I, 1) : -1);
+        }
       }
     }
   starts.back() = int(rows.size());
+  mirror_starts.back() = int(mirrors.size());
   m_piece_row_starts = std::move(starts);
   m_piece_rows = std::move(rows);
+  m_piece_mirror_starts = std::move(mirror_starts);
+  m_piece_mirrors = std::move(mirrors);
   m_mapped = BlockUpper{H.offsets, H.column_starts, H.rows, {}};
 }
 
@@ -165,6 +174,7 @@ void BlockSparsePattern::gather_values(const BlockUpper& H, double shift, double
       for (int k = H.column_starts[j]; k < H.column_starts[j + 1]; ++k) {
         const int i = H.rows[k], si = H.size(i), nq = H.size(j) / 3;
         const double* block = H.values[k];
+        const std::int64_t* mirror = m_piece_mirrors.data() + m_piece_mirror_starts[std::size_t(k)];
         for (int p = 0; p < si / 3; ++p) {
           const int q_begin = i == j ? p : 0;
           const auto entry = [&](int q, int r, int c) { return block[3 * p + r + std::size_t(3 * q + c) * si]; };
@@ -184,11 +194,9 @@ void BlockSparsePattern::gather_values(const BlockUpper& H, double shift, double
             }
           }
           if (m_storage != BlockStorage::Full) continue;
-          const int I = H.offsets[i] / 3 + p;
-          for (int q = q_begin + (i == j ? 1 : 0); q < nq; ++q) {  // the mirrors (J, I) of the off-diagonal pieces
-            const int J = H.offsets[j] / 3 + q;
-            if (J < m_row_begin || J >= m_row_end) continue;
-            double* out = values + pieces_at(J, I, 1);
+          for (int q = q_begin + (i == j ? 1 : 0); q < nq; ++q, ++mirror) {  // the mirrors (J, I) of the off-diagonal pieces
+            if (*mirror < 0) continue;
+            double* out = values + *mirror;
             for (int c = 0; c < 3; ++c)
               for (int r = 0; r < 3; ++r) out[3 * r + c] = entry(q, r, c);
           }

@@ -81,6 +81,10 @@ class BlockSparsePattern {
   // for each such row the value index of its first piece (−1: not owned)
   std::vector<int> m_piece_row_starts;
   std::vector<std::int64_t> m_piece_rows;
+  // …and, with Full storage, per stored block where the value indices of its off-diagonal
+  // pieces' mirrors start in m_piece_mirrors (in the order gather_values() visits them; −1: not owned)
+  std::vector<int> m_piece_mirror_starts;
+  std::vector<std::int64_t> m_piece_mirrors;
   BlockUpper m_mapped;  // the blocks mapped (no values)
 };
 
