@@ -289,7 +289,7 @@ void bind_scene(py::module_& m) {
       .def_readwrite("kappa", &ContactDescription::kappa, "fixed barrier stiffness (Pa m); None: adaptive")
       .def_readwrite("balance_kappa", &ContactDescription::balance_kappa, "adaptive kappa: balance it once, at the first contact")
       .def_readwrite("friction_iterations", &ContactDescription::friction_iterations,
-                     "friction lags per step, >= 1: again at the result while the lag error exceeds the tolerance")
+                     "friction lags per step, >= 1: again at the result while the lag error exceeds eps_v / 10; above 1, Newton also resolves sticking contacts to eps_v h / 10")
       .def_readwrite("damping", &ContactDescription::damping, "lagged contact damping (s), >= 0")
       .def_readwrite("check_start_gaps", &ContactDescription::check_start_gaps, "refuse bodies starting closer than d^")
       .def_readwrite("pairs", &ContactDescription::pairs, "ContactPairList: per-pair settings (ContactPair items)");

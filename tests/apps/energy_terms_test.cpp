@@ -583,6 +583,29 @@ TEST(EnergyTermsFriction, ReversedSlidesGetTheMajorizerInTheRevisedHessian) {
   EXPECT_GE(min_eigenvalue(Eigen::MatrixXd(revised - exact)), -kRoundOff * revised.norm());
 }
 
+// At the step's start every friction stencil sticks (u = 0): sliding the block along x by δ
+// moves the block–pad stencils by δ across their (horizontal) contact planes and the pad–ground
+// ones not at all, so the stick-zone step is δ / (ε_v h). Once the block has slid 3 ε_v h, its
+// stencils are out of the stick zone and the same move counts for nothing.
+TEST(EnergyTermsFriction, StickZoneStepIsTheLargestMoveOfAStickingStencilOverEpsvH) {
+  Fixture f;
+  const FrictionTerm& friction = *f.step.friction;
+  const double epsv_h = f.settings.eps_v * f.settings.h;
+  const BodyModel& block = f.model.bodies[body_index(f.model, "block")];
+  const auto slide = [&](double delta) {
+    Eigen::MatrixX3d dx = Eigen::MatrixX3d::Zero(f.step.x_n.rows(), 3);
+    dx.middleRows(block.vertex_begin, block.vertex_end - block.vertex_begin).col(0).array() = delta;
+    return dx;
+  };
+  const Configuration start{f.step.q_n, f.step.x_n};
+  EXPECT_NEAR(friction.stick_zone_step(start, slide(0.3 * epsv_h)), 0.3, 1e-12);
+  EXPECT_EQ(friction.stick_zone_step(start, Eigen::MatrixX3d::Zero(f.step.x_n.rows(), 3)), 0.0);
+  Eigen::VectorXd q_slid = f.step.q_n;
+  q_slid[block.dof] += 3 * epsv_h;
+  const Eigen::MatrixX3d x_slid = f.model.surface(q_slid);
+  EXPECT_EQ(friction.stick_zone_step({q_slid, x_slid}, slide(0.3 * epsv_h)), 0.0);
+}
+
 INSTANTIATE_TEST_SUITE_P(EnergyTerms, WholeTerm, ::testing::ValuesIn(kTerms),
                          [](const auto& info) { return info.param; });
 

@@ -163,15 +163,25 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
     // moves out by only about its own gap per iteration, a move the speed rule alone takes for
     // convergence. The last (small) step is still taken when it lowers E: skipping it would
     // freeze a body whose per-step velocity change is below ε_d, e.g. a block starting to slide.
+    // With stick_tolerance set, it must also move no sticking friction stencil by more than that
+    // fraction of ε_v h: in the stick zone friction's stiffness makes every direction short, so
+    // a block that should break loose from it would otherwise stop there.
     const bool slow = report.last_step_speed < settings.tolerance;
-    double gap_change = 0;
+    double gap_change = 0, stick_step = 0;
     if (slow)
-      for (const EnergyTerm* t : terms) gap_change = std::max(gap_change, t->relative_gap_change(c, dx));
-    const bool small_step = slow && gap_change <= settings.gap_tolerance;
-    gap_note = slow && !small_step ? " (the last direction was below the speed tolerance but changed a contact's gap by " +
-                                         std::to_string(int(std::lround(100 * gap_change))) +
-                                         " %, above solver.gap_tolerance)"
-                                   : std::string();
+      for (const EnergyTerm* t : terms) {
+        gap_change = std::max(gap_change, t->relative_gap_change(c, dx));
+        if (std::isfinite(settings.stick_tolerance)) stick_step = std::max(stick_step, t->stick_zone_step(c, dx));
+      }
+    const bool small_step = slow && gap_change <= settings.gap_tolerance && stick_step <= settings.stick_tolerance;
+    gap_note.clear();
+    if (slow && gap_change > settings.gap_tolerance)
+      gap_note = " (the last direction was below the speed tolerance but changed a contact's gap by " +
+                 std::to_string(int(std::lround(100 * gap_change))) + " %, above solver.gap_tolerance)";
+    else if (slow && !small_step)
+      gap_note = " (the last direction was below the speed tolerance but moved a sticking friction contact by " +
+                 std::to_string(int(std::lround(100 * stick_step))) + " % of ε_v h, above " +
+                 std::to_string(int(std::lround(100 * settings.stick_tolerance))) + " %)";
     double alpha = 1.0;
     for (const EnergyTerm* t : terms) alpha = std::min(alpha, t->max_step(c, p, dx));
     report.smallest_ccd_step = std::min(report.smallest_ccd_step, alpha);

@@ -3,6 +3,7 @@
 /// decreasing energy (IPC, Li et al. 2020, Alg. 1; ABD, Lan et al. 2022, Alg. 1).
 
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,9 @@ struct NewtonSettings {
   double tolerance = 1e-2;   ///< ε_d (m/s): stop when max_k ‖(Φp)_k‖ / h < ε_d
   /// ... and when p changes no active contact's distance d by more than this fraction of d.
   double gap_tolerance = 0.2;
+  /// ... and, where finite, when p moves no friction stencil in its stick zone by more than
+  /// this fraction of ε_v h (EnergyTerm::stick_zone_step); infinite: no such condition.
+  double stick_tolerance = std::numeric_limits<double>::infinity();
   double h = 1e-2;           ///< time step (s), to turn the step into a speed
   int max_iterations = 200;  ///< cap on iterations
   int max_line_search = 60;  ///< cap on halvings of α

@@ -126,6 +126,7 @@ StepStats Simulation::step() {
   NewtonSettings ns;
   ns.tolerance = m_settings.tolerance;
   ns.gap_tolerance = m_settings.gap_tolerance;
+  if (m_friction && m_settings.friction_iterations > 1) ns.stick_tolerance = friction_resolution;
   ns.h = h;
   ns.max_iterations = m_settings.max_iterations;
   ns.forcing.eta_max = m_settings.krylov_rtol_max;
@@ -139,13 +140,13 @@ StepStats Simulation::step() {
   stats.newton = minimize();
   // Friction lagged at qⁿ misses a contact that starts within the step (a landing slides on
   // without friction for a step): lag again at the result while that changes some body's
-  // velocity by more than the tolerance, up to contact.friction_iterations lags in all.
+  // velocity by more than friction_resolution ε_v, up to contact.friction_iterations lags in all.
   for (int lags = 1; m_friction; ++lags) {
     const Configuration c{q_new, m_model.surface(q_new)};
     m_barrier.update(c);
     stats.friction_lag_error = friction_lag_error(c);
     if (lags == m_settings.friction_iterations || !stats.newton.converged ||
-        !(stats.friction_lag_error > m_settings.tolerance))
+        !(stats.friction_lag_error > friction_resolution * m_settings.eps_v))
       break;
     m_friction->relag(c, m_barrier);
     ++stats.friction_relags;

@@ -13,6 +13,12 @@
 
 namespace stiffsoft {
 
+/// With friction_iterations > 1, the fraction of ε_v to which a step resolves friction: Newton
+/// does not stop while its last direction moves a sticking stencil by more than this fraction of
+/// ε_v h (NewtonSettings::stick_tolerance), and friction is lagged again while the lag error
+/// exceeds this fraction of ε_v (Simulation::step). Neither depends on Newton's ε_d.
+inline constexpr double friction_resolution = 0.1;
+
 /// Everything that drives the time stepping, in SI units, already resolved (no relative
 /// defaults left: the scene loader turns those into numbers).
 struct SimulationSettings {
@@ -24,7 +30,7 @@ struct SimulationSettings {
   double eps_v = 1e-3;                            ///< friction smoothing speed ε_v (m/s)
   std::optional<double> kappa;                    ///< fixed barrier stiffness; unset: adaptive
   bool balance_kappa = BarrierSettings{}.balance;  ///< adaptive κ: balance it once, at the first contact (BarrierSettings::balance)
-  int friction_iterations = 1;                    ///< friction lags per step: at the start, then again while the lag error exceeds ε_d (Simulation::step)
+  int friction_iterations = 1;                    ///< friction lags per step: at the start, then again while the lag error exceeds friction_resolution ε_v (Simulation::step)
   double tolerance = NewtonSettings{}.tolerance;  ///< Newton's ε_d (m/s)
   double gap_tolerance = NewtonSettings{}.gap_tolerance;  ///< Newton also needs every active contact's gap to change by at most this fraction
   int max_iterations = NewtonSettings{}.max_iterations;  ///< Newton iteration cap per solve (a step solves again per friction re-lag)

@@ -49,6 +49,9 @@ class EnergyTerm {
   virtual bool end_iteration(const Configuration&) { return false; }
   /// Largest relative change of a gap the term keeps open along dx (0: none).
   virtual double relative_gap_change(const Configuration&, const Eigen::MatrixX3d& /*dx*/) const { return 0.0; }
+  /// Largest tangential move along dx of a friction stencil in its stick zone, as a fraction
+  /// of the zone's width ε_v h (0: none).
+  virtual double stick_zone_step(const Configuration&, const Eigen::MatrixX3d& /*dx*/) const { return 0.0; }
 };
 
 }  // namespace stiffsoft

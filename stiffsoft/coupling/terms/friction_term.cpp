@@ -2,6 +2,9 @@
 
 #include <algorithm>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
 #include <stiffsoft/coupling/model/stencil_jacobian.hpp>
 #include <stiffsoft/coupling/terms/chunked_assembly.hpp>
 #include <stiffsoft/coupling/terms/ordered_sum.hpp>
@@ -63,6 +66,21 @@ std::vector<double> FrictionTerm::normal_force_per_body(const Model& model, cons
 
 contact::Vector12d FrictionTerm::displacement(const Configuration& c, size_t k) const {
   return gather(c.x, m_vertices[k]) - m_lagged[k];
+}
+
+double FrictionTerm::stick_zone_step(const Configuration& c, const Eigen::MatrixX3d& dx) const {
+  // max is exact in any order: the same result whatever the thread count.
+  return tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, m_stencils.size(), 256), 0.0,
+      [&](const tbb::blocked_range<size_t>& r, double worst) {
+        for (size_t k = r.begin(); k < r.end(); ++k) {
+          const contact::FrictionStencil& f = m_stencils[k];
+          if (!(f.normal_force > 0) || (f.T * displacement(c, k)).norm() >= m_epsv_h) continue;
+          worst = std::max(worst, (f.T * gather(dx, m_vertices[k])).norm() / m_epsv_h);
+        }
+        return worst;
+      },
+      [](double a, double b) { return std::max(a, b); });
 }
 
 double FrictionTerm::value(const Configuration& c) const {

@@ -34,6 +34,9 @@ class FrictionTerm final : public EnergyTerm {
   /// step_reverses_slide), replaces its Hessian in H by the majorizer; true if any.
   bool revise_hessian(const Configuration& c, const Eigen::VectorXd& dq, const Eigen::MatrixX3d& dx,
                       BlockHessian& H) const override;
+  /// See EnergyTerm::stick_zone_step: over the stencils with λ > 0 and ‖u‖ < ε_v h at c,
+  /// max ‖T dx‖ / (ε_v h).
+  double stick_zone_step(const Configuration& c, const Eigen::MatrixX3d& dx) const override;
   /// Friction force −∇_x D on every surface vertex, |V|×3 (energy units, as the barrier's).
   Eigen::MatrixX3d vertex_forces(const Configuration& c) const;
   /// Σ_k λ_k over the lagged stencils that touch each body (indexed like Model::bodies; a
