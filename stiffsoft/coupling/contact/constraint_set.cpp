@@ -14,25 +14,6 @@ using contact::PrimitivePair;
 
 namespace {
 
-/// gather() from either storage of the surface points.
-template <class Points>
-contact::Vector12d gather_points(const Points& x, const std::array<int, 4>& vertices) {
-  contact::Vector12d out = contact::Vector12d::Zero();
-  for (int i = 0; i < 4; ++i)
-    if (vertices[i] >= 0) out.segment<3>(3 * i) = x.row(vertices[i]).transpose();
-  return out;
-}
-
-}  // namespace
-
-contact::Vector12d gather(const Eigen::MatrixX3d& x, const std::array<int, 4>& vertices) {
-  return gather_points(x, vertices);
-}
-
-contact::Vector12d gather(const PointRows& x, const std::array<int, 4>& vertices) { return gather_points(x, vertices); }
-
-namespace {
-
 /// Canonical vertex order so that the same physical pair found from different candidates
 /// compares equal: VV sorted, EV with its edge sorted, EE with each edge sorted and the
 /// edges ordered, FV as the face stores it.

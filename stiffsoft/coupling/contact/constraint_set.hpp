@@ -25,15 +25,20 @@ struct ContactConstraint {
   double weight = 1;  ///< multiplicity, ≥ 1
 };
 
-/// The stencil's vertex positions packed [x_0; x_1; x_2; x_3] (unused entries zero), m.
-contact::Vector12d gather(const Eigen::MatrixX3d& x, const std::array<int, 4>& vertices);
-
 /// Surface points stored point by point (|V|×3, row-major): a stencil's four points are four
 /// contiguous triples instead of twelve scattered entries, for loops over many stencils.
 using PointRows = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
-/// gather() from point-by-point storage: the same values.
-contact::Vector12d gather(const PointRows& x, const std::array<int, 4>& vertices);
+/// The stencil's vertex positions packed [x_0; x_1; x_2; x_3] (unused entries zero), m, from
+/// either storage of the surface points (Eigen::MatrixX3d or PointRows). Inline: it runs once
+/// per stencil in every loop over the contacts.
+template <class Points>
+contact::Vector12d gather(const Points& x, const std::array<int, 4>& vertices) {
+  contact::Vector12d out = contact::Vector12d::Zero();
+  for (int i = 0; i < 4; ++i)
+    if (vertices[i] >= 0) out.template segment<3>(3 * i) = x.row(vertices[i]).transpose();
+  return out;
+}
 
 /// Contacts among the candidates whose distance at x is below d̂ (m). Nearly parallel edge
 /// pairs (‖ea × eb‖² < ε_x) stay edge–edge with the mollifier and the true segment distance.
