@@ -52,14 +52,18 @@ BarrierTerm::BarrierTerm(const Model& model, const BarrierSettings& settings, Ph
 }
 
 void BarrierTerm::update(const Configuration& c) {
+  // The contacts depend on c.x alone (whichever candidate set finds them, the pairs closer
+  // than d̂ and their multiplicities are the same).
+  if (m_constraints_at.rows() == c.x.rows() && m_constraints_at == c.x) return;
   double dummy = 0;
   ScopedTimer timer(m_times ? m_times->broad_phase : dummy);
   if (m_swept && m_swept->covers(c.x)) {
     m_constraints = build_constraints(m_model, c.x, m_swept->all(), m_settings.dhat);
-    return;
+  } else {
+    const Candidates candidates = m_broad_phase.find(m_model, c.x, c.x, 0.5 * m_settings.dhat);
+    m_constraints = build_constraints(m_model, c.x, candidates, m_settings.dhat);
   }
-  const Candidates candidates = m_broad_phase.find(m_model, c.x, c.x, 0.5 * m_settings.dhat);
-  m_constraints = build_constraints(m_model, c.x, candidates, m_settings.dhat);
+  m_constraints_at = c.x;
 }
 
 double BarrierTerm::value(const Configuration& c) const {

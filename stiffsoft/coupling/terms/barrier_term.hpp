@@ -34,7 +34,8 @@ class BarrierTerm final : public EnergyTerm {
   BarrierTerm(const Model& model, const BarrierSettings& settings, PhaseTimes* times);
   /// See EnergyTerm::name.
   const char* name() const override { return "barrier"; }
-  /// Rebuilds candidates and active contacts at c.x.
+  /// Rebuilds candidates and active contacts at c.x; nothing to do when c.x is, value for
+  /// value, where they were last built (a step's result, then the next step's start).
   void update(const Configuration& c) override;
   /// See EnergyTerm::value.
   double value(const Configuration& c) const override;
@@ -82,6 +83,7 @@ class BarrierTerm final : public EnergyTerm {
   double m_prev_min_distance = -1;
   bool m_balanced = false;
   std::vector<ContactConstraint> m_constraints;
+  Eigen::MatrixX3d m_constraints_at;  ///< the surface m_constraints were built at
   /// The run's broad phase, which remembers body pairs' primitive pairs between calls.
   mutable BroadPhase m_broad_phase;
   /// Candidates of the last direction max_step bounded, reused by update() on that segment.
