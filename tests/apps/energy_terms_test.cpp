@@ -583,6 +583,34 @@ TEST(EnergyTermsFriction, ReversedSlidesGetTheMajorizerInTheRevisedHessian) {
   EXPECT_GE(min_eigenvalue(Eigen::MatrixXd(revised - exact)), -kRoundOff * revised.norm());
 }
 
+// A stencil once revised keeps its majorizer until friction is lagged again: the next Hessian
+// assembled is the revised one, and the same step's reversal revises nothing more.
+TEST(EnergyTermsFriction, RevisedStencilsKeepTheMajorizerUntilTheNextLag) {
+  Fixture f;
+  FrictionTerm& friction = *f.step.friction;
+  const Eigen::VectorXd& q = f.q;
+  const Eigen::MatrixX3d x = f.model.surface(q);
+  const Configuration c{q, x};
+  friction.update(c);
+  const auto assembled = [&] {
+    BlockHessian H(f.model.blocks);
+    friction.add_hessian(c, H);
+    return H;
+  };
+  BlockHessian H = assembled();
+  const Eigen::MatrixXd exact = dense(H);
+  const Eigen::VectorXd back = -2.0 * (q - f.step.q_n);
+  ASSERT_TRUE(friction.revise_hessian(c, back, f.model.surface_step(back), H));
+  const Eigen::MatrixXd revised = dense(H);
+  BlockHessian again = assembled();
+  EXPECT_LT(relative_error(dense(again), revised), kRoundOff);
+  EXPECT_FALSE(friction.revise_hessian(c, back, f.model.surface_step(back), again));
+  // Lagged again (here at the step's start, so the same stencils): every stencil exact again.
+  friction.relag({f.step.q_n, f.step.x_n}, f.step.barrier);
+  EXPECT_LT(relative_error(dense(assembled()), exact), kRoundOff);
+  EXPECT_GT(relative_error(revised, exact), 1e-3);
+}
+
 // At the step's start every friction stencil sticks (u = 0): sliding the block along x by δ
 // moves the block–pad stencils by δ across their (horizontal) contact planes and the pad–ground
 // ones not at all, so the stick-zone step is δ / (ε_v h). Once the block has slid 3 ε_v h, its

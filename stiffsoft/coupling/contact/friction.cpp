@@ -104,12 +104,20 @@ Matrix12d friction_potential_hessian(const FrictionStencil& f, const Vector12d& 
   return h.T.transpose().lazyProduct(h.C * h.T);
 }
 
+FrictionHessianFactors friction_majorizer_factors(const FrictionStencil& f, const Vector12d& dx, double mu,
+                                                  double epsv_h) {
+  FrictionHessianFactors out{tangent_operator(f), Eigen::Matrix2d::Zero()};
+  if (mu == 0.0 || f.normal_force == 0.0) return out;
+  const double y = (out.T * dx).norm();
+  out.C = (mu * f.normal_force * friction_f1_over_y(y, epsv_h)) * Eigen::Matrix2d::Identity();
+  return out;
+}
+
 Matrix12d friction_majorizer_hessian(const FrictionStencil& f, const Vector12d& dx, double mu,
                                      double epsv_h) {
   if (mu == 0.0 || f.normal_force == 0.0) return Matrix12d::Zero();
-  const Eigen::Matrix<double, 2, 12> T = tangent_operator(f);
-  const double y = (T * dx).norm();
-  return mu * f.normal_force * friction_f1_over_y(y, epsv_h) * T.transpose() * T;
+  const FrictionHessianFactors h = friction_majorizer_factors(f, dx, mu, epsv_h);
+  return h.C(0, 0) * h.T.transpose() * h.T;
 }
 
 bool step_reverses_slide(const FrictionStencil& f, const Vector12d& dx, const Vector12d& dx_step,

@@ -92,6 +92,10 @@ FrictionHessianFactors friction_hessian_factors(const FrictionStencil& f, const 
 Matrix12d friction_majorizer_hessian(const FrictionStencil& f, const Vector12d& dx, double mu,
                                      double epsv_h);
 
+/// friction_majorizer_hessian() as its factors: T and C = μ λ (f₁(y)/y) I₂.
+FrictionHessianFactors friction_majorizer_factors(const FrictionStencil& f, const Vector12d& dx, double mu,
+                                                  double epsv_h);
+
 /// Whether the step dx_step reverses the slide of a stencil displaced by dx: it slides
 /// (‖u‖ ≥ ε) and the full step ends on the far side, u·(u + T dx_step) < 0.
 bool step_reverses_slide(const FrictionStencil& f, const Vector12d& dx, const Vector12d& dx_step,

@@ -24,6 +24,7 @@ void FrictionTerm::relag(const Configuration& c, const BarrierTerm& barrier) {
   m_vertices.clear();
   m_lagged.clear();
   m_jacobians.clear();
+  m_majorized.assign(barrier.constraints().size(), 0);
   for (const ContactConstraint& k : barrier.constraints()) {
     m_stencils.push_back(contact::make_friction_stencil(k.stencil, gather(c.x, k.vertices),
                                                         barrier.dhat(), barrier.kappa() * k.weight));
@@ -104,8 +105,10 @@ void FrictionTerm::add_hessian(const Configuration& c, BlockHessian& H) const {
       m_stencils.size(),
       [&](size_t k, StencilHessian& out) {
         // Rank ≤ 2: T is mapped through J before any 12×12 product is formed.
+        const contact::Vector12d u = displacement(c, k);
         const contact::FrictionHessianFactors h =
-            contact::friction_hessian_factors(m_stencils[k], displacement(c, k), m_mu, m_epsv_h, true);
+            m_majorized[k] ? contact::friction_majorizer_factors(m_stencils[k], u, m_mu, m_epsv_h)
+                           : contact::friction_hessian_factors(m_stencils[k], u, m_mu, m_epsv_h, true);
         m_jacobians[k].low_rank_block_hessians(h.T, h.C, out);
       },
       [&](size_t, const StencilHessian& out) { out.add_to(H); });
@@ -123,8 +126,11 @@ bool FrictionTerm::revise_hessian(const Configuration& c, const Eigen::VectorXd&
       m_stencils.size(),
       [&](size_t k, Revision& out) {
         const contact::Vector12d u = displacement(c, k);
-        out.reversed = contact::step_reverses_slide(m_stencils[k], u, gather(dx, m_vertices[k]), m_epsv_h);
+        // Each stencil's flag is its own: the same flags whatever the thread count.
+        out.reversed = !m_majorized[k] &&
+                       contact::step_reverses_slide(m_stencils[k], u, gather(dx, m_vertices[k]), m_epsv_h);
         if (!out.reversed) return;
+        m_majorized[k] = 1;
         m_jacobians[k].block_hessians(contact::friction_majorizer_hessian(m_stencils[k], u, m_mu, m_epsv_h) -
                                           contact::friction_potential_hessian(m_stencils[k], u, m_mu, m_epsv_h, true),
                                       out.blocks);

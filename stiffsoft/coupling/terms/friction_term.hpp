@@ -28,10 +28,14 @@ class FrictionTerm final : public EnergyTerm {
   double value(const Configuration& c) const override;
   /// See EnergyTerm::add_gradient.
   void add_gradient(const Configuration& c, Eigen::VectorXd& g) const override;
-  /// See EnergyTerm::add_hessian (the PSD-projected exact Hessian of every stencil).
+  /// See EnergyTerm::add_hessian: the PSD-projected exact Hessian of every stencil, or its
+  /// majorizer on the stencils revise_hessian has switched to it since the last lag.
   void add_hessian(const Configuration& c, BlockHessian& H) const override;
   /// On every stencil whose slide the full step dx would reverse (contact/friction.hpp,
-  /// step_reverses_slide), replaces its Hessian in H by the majorizer; true if any.
+  /// step_reverses_slide), replaces its Hessian in H by the majorizer; true if any. Such a
+  /// stencil keeps the majorizer in add_hessian for the rest of the lag (it bounds friction's
+  /// curvature from above, so every direction stays a descent direction), so that a later
+  /// iteration solves once where it would otherwise revise the same stencil again.
   bool revise_hessian(const Configuration& c, const Eigen::VectorXd& dq, const Eigen::MatrixX3d& dx,
                       BlockHessian& H) const override;
   /// See EnergyTerm::stick_zone_step: over the stencils with λ > 0 and ‖u‖ < ε_v h at c,
@@ -57,6 +61,8 @@ class FrictionTerm final : public EnergyTerm {
   std::vector<std::array<int, 4>> m_vertices;
   std::vector<contact::Vector12d> m_lagged;     ///< each stencil's vertices at xⁿ
   std::vector<StencilJacobian> m_jacobians;     ///< each stencil's map from the DOFs
+  /// Whether each stencil has been switched to its majorizer (revise_hessian; cleared by relag)
+  mutable std::vector<char> m_majorized;
 };
 
 }  // namespace stiffsoft
