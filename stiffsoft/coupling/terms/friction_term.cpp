@@ -131,9 +131,12 @@ bool FrictionTerm::revise_hessian(const Configuration& c, const Eigen::VectorXd&
                        contact::step_reverses_slide(m_stencils[k], u, gather(dx, m_vertices[k]), m_epsv_h);
         if (!out.reversed) return;
         m_majorized[k] = 1;
-        m_jacobians[k].block_hessians(contact::friction_majorizer_hessian(m_stencils[k], u, m_mu, m_epsv_h) -
-                                          contact::friction_potential_hessian(m_stencils[k], u, m_mu, m_epsv_h, true),
-                                      out.blocks);
+        // Both models are Tᵀ C T with the same T: the change is Tᵀ (C_majorizer − C) T, rank ≤ 2.
+        const contact::FrictionHessianFactors majorizer =
+            contact::friction_majorizer_factors(m_stencils[k], u, m_mu, m_epsv_h);
+        const contact::FrictionHessianFactors exact =
+            contact::friction_hessian_factors(m_stencils[k], u, m_mu, m_epsv_h, true);
+        m_jacobians[k].low_rank_block_hessians(exact.T, Eigen::Matrix2d(majorizer.C - exact.C), out.blocks);
       },
       [&](size_t, const Revision& out) {
         if (!out.reversed) return;
