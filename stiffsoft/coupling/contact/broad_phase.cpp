@@ -1,11 +1,13 @@
 #include <stiffsoft/coupling/contact/broad_phase.hpp>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
 
 #include <stiffsoft/coupling/contact/ordered_chunks.hpp>
+#include <stiffsoft/coupling/for_each_item.hpp>
 
 namespace stiffsoft {
 
@@ -15,7 +17,8 @@ using Box = AxisBox;
 
 Box intersection(const Box& a, const Box& b) { return {a.lo.max(b.lo), a.hi.min(b.hi)}; }
 
-void extend(Box& a, const Box& b) {
+/// Grows a to hold b (inlined: called once per vertex of every primitive's box).
+[[gnu::always_inline]] inline void extend(Box& a, const Box& b) {
   a.lo = a.lo.min(b.lo);
   a.hi = a.hi.max(b.hi);
 }
@@ -43,16 +46,22 @@ void span(const Primitives& primitives, const std::vector<Box>& vertex, Eigen::I
 
 PrimitiveBoxes primitive_boxes(const CollisionMesh& mesh, const Eigen::MatrixX3d& x0,
                                const Eigen::MatrixX3d& x1, double inflation) {
+  // In tasks of 1024 primitives, each spanned in one call: one task or call per primitive
+  // cost as much as its box.
+  constexpr Eigen::Index kGrain = 1024;
+  const auto span_all = [&](const auto& primitives, const std::vector<Box>& vertex, std::vector<Box>& out) {
+    out.resize(primitives.rows());
+    tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, primitives.rows(), kGrain),
+                      [&](const tbb::blocked_range<Eigen::Index>& r) { span(primitives, vertex, r.begin(), r.end(), out); });
+  };
   PrimitiveBoxes boxes;
   boxes.vertex.resize(x0.rows());
-  tbb::parallel_for(Eigen::Index(0), x0.rows(), [&](Eigen::Index v) {
+  for_each_item(std::size_t(x0.rows()), std::size_t(kGrain), [&](std::size_t v) {
     const Eigen::Array3d a = x0.row(v).transpose().array(), b = x1.row(v).transpose().array();
     boxes.vertex[v] = {a.min(b) - inflation, a.max(b) + inflation};
   });
-  boxes.face.resize(mesh.F.rows());
-  tbb::parallel_for(Eigen::Index(0), mesh.F.rows(), [&](Eigen::Index f) { span(mesh.F, boxes.vertex, f, f + 1, boxes.face); });
-  boxes.edge.resize(mesh.E.rows());
-  tbb::parallel_for(Eigen::Index(0), mesh.E.rows(), [&](Eigen::Index e) { span(mesh.E, boxes.vertex, e, e + 1, boxes.edge); });
+  span_all(mesh.F, boxes.vertex, boxes.face);
+  span_all(mesh.E, boxes.vertex, boxes.edge);
   return boxes;
 }
 
@@ -250,29 +259,34 @@ void primitive_pairs(const Model& model, const PrimitiveBoxes& boxes, const std:
 /// Appends to `out` the pairs (i, j) of `pairs` whose boxes a[i] and b[j] overlap, in order,
 /// and, when `core` is given, to `core` those whose boxes still overlap shrunk by `shrink` on
 /// every side (the boxes before their growth). Most do in a resting pile, unpredictably: each
-/// pair is written and kept only when its boxes overlap, without a branch on it.
+/// pair is written and kept only when its boxes overlap, without a branch on it, into a block
+/// on the stack (not zero-filled, unlike a resized vector) that is then appended.
 void keep_overlapping(const std::vector<std::array<int, 2>>& pairs, const std::vector<Box>& a, const std::vector<Box>& b,
                       std::vector<std::array<int, 2>>& out, std::vector<std::array<int, 2>>* core, double shrink) {
-  std::size_t count = out.size(), core_count = core ? core->size() : 0;
-  out.resize(count + pairs.size());
-  if (core) core->resize(core_count + pairs.size());
   // Overlap of the shrunk boxes, x.lo + shrink ≤ y.hi − shrink, tested as a gap of the grown
   // ones no smaller than 2·shrink less 1e-9 of it: a superset by far less than the CCD's own
   // rounding allowance (additive_ccd.hpp), whose box test then rejects those pairs.
   const double gap = 2 * shrink * (1 - 1e-9);
-  for (const auto& pair : pairs) {
-    const Box& x = a[pair[0]];
-    const Box& y = b[pair[1]];
-    out[count] = pair;
-    count += (x.lo[0] <= y.hi[0]) & (y.lo[0] <= x.hi[0]) & (x.lo[1] <= y.hi[1]) & (y.lo[1] <= x.hi[1]) &
-             (x.lo[2] <= y.hi[2]) & (y.lo[2] <= x.hi[2]);
-    if (!core) continue;
-    (*core)[core_count] = pair;
-    core_count += (x.lo[0] + gap <= y.hi[0]) & (y.lo[0] + gap <= x.hi[0]) & (x.lo[1] + gap <= y.hi[1]) &
-                  (y.lo[1] + gap <= x.hi[1]) & (x.lo[2] + gap <= y.hi[2]) & (y.lo[2] + gap <= x.hi[2]);
+  constexpr std::size_t kBlock = 256;
+  std::array<int, 2> kept[kBlock], kept_core[kBlock];
+  for (std::size_t begin = 0; begin < pairs.size(); begin += kBlock) {
+    const std::size_t end = std::min(pairs.size(), begin + kBlock);
+    std::size_t count = 0, core_count = 0;
+    for (std::size_t k = begin; k < end; ++k) {
+      const auto& pair = pairs[k];
+      const Box& x = a[pair[0]];
+      const Box& y = b[pair[1]];
+      kept[count] = pair;
+      count += (x.lo[0] <= y.hi[0]) & (y.lo[0] <= x.hi[0]) & (x.lo[1] <= y.hi[1]) & (y.lo[1] <= x.hi[1]) &
+               (x.lo[2] <= y.hi[2]) & (y.lo[2] <= x.hi[2]);
+      if (!core) continue;
+      kept_core[core_count] = pair;
+      core_count += (x.lo[0] + gap <= y.hi[0]) & (y.lo[0] + gap <= x.hi[0]) & (x.lo[1] + gap <= y.hi[1]) &
+                    (y.lo[1] + gap <= x.hi[1]) & (x.lo[2] + gap <= y.hi[2]) & (y.lo[2] + gap <= x.hi[2]);
+    }
+    out.insert(out.end(), kept, kept + count);
+    if (core) core->insert(core->end(), kept_core, kept_core + core_count);
   }
-  out.resize(count);
-  if (core) core->resize(core_count);
 }
 
 }  // namespace
