@@ -6,7 +6,7 @@
 
 namespace stiffsoft::ccd {
 
-void validate(const CcdSettings& settings) {
+void throw_out_of_range(const CcdSettings& settings) {
   if (!(settings.min_distance >= 0) || !std::isfinite(settings.min_distance)) {
     throw std::invalid_argument("CcdSettings.min_distance: must be finite and >= 0, got " +
                                 std::to_string(settings.min_distance));
@@ -23,6 +23,7 @@ void validate(const CcdSettings& settings) {
     throw std::invalid_argument("CcdSettings.t_max: must be in (0, 1], got " +
                                 std::to_string(settings.t_max));
   }
+  throw std::logic_error("CcdSettings: throw_out_of_range called with settings in range");
 }
 
 }  // namespace stiffsoft::ccd

@@ -1,6 +1,8 @@
 #pragma once
 /// @file Settings of the conservative linear continuous collision detection (CCD).
 
+#include <limits>
+
 namespace stiffsoft::ccd {
 
 /// Settings of the conservative CCD (Additive CCD, Li, Kaufman, Jiang 2021, §5).
@@ -11,7 +13,16 @@ struct CcdSettings {
   double t_max = 1.0;          ///< only look in [0, t_max], 0 ≤ t_max ≤ 1
 };
 
+/// Throws std::invalid_argument naming the offending field (called by validate()).
+[[noreturn]] void throw_out_of_range(const CcdSettings& settings);
+
 /// Throws std::invalid_argument naming the offending field when `settings` is out of range.
-void validate(const CcdSettings& settings);
+/// Inline: every query checks its settings, and the check is a few compares.
+inline void validate(const CcdSettings& settings) {
+  const bool in_range = settings.min_distance >= 0 && settings.min_distance < std::numeric_limits<double>::infinity() &&
+                        settings.tolerance > 0 && settings.tolerance < 1 && settings.max_iterations >= 1 &&
+                        settings.t_max > 0 && settings.t_max <= 1;
+  if (!in_range) throw_out_of_range(settings);
+}
 
 }  // namespace stiffsoft::ccd
