@@ -32,8 +32,8 @@ AffineResidual<2> edge_edge_residual() {
   return {Eigen::Vector4d(1, 0, -1, 0), D};
 }
 
-/// Σ_i w_i x_i for a packed stencil.
-Eigen::Vector3d combine(const Vector12d& x, const Eigen::Vector4d& w) {
+/// Σ_i w_i x_i for a packed stencil (inlined: the closest points of every pair call it M + 1 times).
+[[gnu::always_inline]] inline Eigen::Vector3d combine(const Vector12d& x, const Eigen::Vector4d& w) {
   return w[0] * x.segment<3>(0) + w[1] * x.segment<3>(3) + w[2] * x.segment<3>(6) +
          w[3] * x.segment<3>(9);
 }
