@@ -1,7 +1,8 @@
 #pragma once
 /// @file Settings of the conservative linear continuous collision detection (CCD).
 
-#include <limits>
+#include <cmath>
+#include <string>
 
 namespace stiffsoft::ccd {
 
@@ -13,16 +14,21 @@ struct CcdSettings {
   double t_max = 1.0;          ///< only look in [0, t_max], 0 ≤ t_max ≤ 1
 };
 
-/// Throws std::invalid_argument naming the offending field (called by validate()).
-[[noreturn]] void throw_out_of_range(const CcdSettings& settings);
+/// Throws std::invalid_argument "CcdSettings.<field_and_requirement>, got <value>" (out of
+/// line: validate() runs in every query, the message almost never).
+[[noreturn]] void throw_invalid(const char* field_and_requirement, const std::string& value);
 
 /// Throws std::invalid_argument naming the offending field when `settings` is out of range.
 /// Inline: every query checks its settings, and the check is a few compares.
 inline void validate(const CcdSettings& settings) {
-  const bool in_range = settings.min_distance >= 0 && settings.min_distance < std::numeric_limits<double>::infinity() &&
-                        settings.tolerance > 0 && settings.tolerance < 1 && settings.max_iterations >= 1 &&
-                        settings.t_max > 0 && settings.t_max <= 1;
-  if (!in_range) throw_out_of_range(settings);
+  if (!(settings.min_distance >= 0) || !std::isfinite(settings.min_distance))
+    throw_invalid("min_distance: must be finite and >= 0", std::to_string(settings.min_distance));
+  if (!(settings.tolerance > 0 && settings.tolerance < 1))
+    throw_invalid("tolerance: must be in (0, 1)", std::to_string(settings.tolerance));
+  if (settings.max_iterations < 1)
+    throw_invalid("max_iterations: must be >= 1", std::to_string(settings.max_iterations));
+  if (!(settings.t_max > 0 && settings.t_max <= 1))
+    throw_invalid("t_max: must be in (0, 1]", std::to_string(settings.t_max));
 }
 
 }  // namespace stiffsoft::ccd

@@ -49,19 +49,19 @@ PrimitiveBoxes primitive_boxes(const CollisionMesh& mesh, const Eigen::MatrixX3d
   // In tasks of 1024 primitives, each spanned in one call: one task or call per primitive
   // cost as much as its box.
   constexpr Eigen::Index kGrain = 1024;
-  const auto span_all = [&](const auto& primitives, const std::vector<Box>& vertex, std::vector<Box>& out) {
+  PrimitiveBoxes boxes;
+  const auto span_all = [&](const auto& primitives, std::vector<Box>& out) {
     out.resize(primitives.rows());
     tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, primitives.rows(), kGrain),
-                      [&](const tbb::blocked_range<Eigen::Index>& r) { span(primitives, vertex, r.begin(), r.end(), out); });
+                      [&](const tbb::blocked_range<Eigen::Index>& r) { span(primitives, boxes.vertex, r.begin(), r.end(), out); });
   };
-  PrimitiveBoxes boxes;
   boxes.vertex.resize(x0.rows());
   for_each_item(std::size_t(x0.rows()), std::size_t(kGrain), [&](std::size_t v) {
     const Eigen::Array3d a = x0.row(v).transpose().array(), b = x1.row(v).transpose().array();
     boxes.vertex[v] = {a.min(b) - inflation, a.max(b) + inflation};
   });
-  span_all(mesh.F, boxes.vertex, boxes.face);
-  span_all(mesh.E, boxes.vertex, boxes.edge);
+  span_all(mesh.F, boxes.face);
+  span_all(mesh.E, boxes.edge);
   return boxes;
 }
 
