@@ -2,7 +2,9 @@
 /// (12), soft-node (3) and mixed blocks, reuse of the analysis, refusal of an indefinite matrix,
 /// the fill its ordering keeps, the same factor bit for bit on one and two threads, a new
 /// factorisation that recomputes only the columns a change reaches, and blocks read in place
-/// (BlockUpper) factorised as their compressed copy is.
+/// (BlockUpper) factorised as their compressed copy is. The incomplete factorisation IC(0)
+/// (Fill::None): no fill, exact where the pattern fills nothing, and behind "block_cg" the
+/// same p bit for bit on one and two threads.
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -14,6 +16,7 @@
 #include <stiffsoft/coupling/linear_solver/block_cholesky.hpp>
 #include <stiffsoft/coupling/linear_solver/block_cholesky_solver.hpp>
 #include <stiffsoft/coupling/linear_solver/cholmod_solver.hpp>
+#include <stiffsoft/coupling/linear_solver/linear_solver.hpp>
 
 namespace stiffsoft {
 namespace {
@@ -257,6 +260,50 @@ TEST(BlockCholesky, FactorisesBlocksInPlaceAsItFactorisesTheirCompressedCopy) {
   below.rows[0] = 1;  // column 0 claims block row 1
   BlockCholesky refuses;
   EXPECT_THROW(refuses.analyze(below), std::invalid_argument);
+}
+
+TEST(IncompleteBlockCholesky, KeepsOnlyTheBlocksOfHAndIsExactWhereTheyFillNothing) {
+  // The star of EliminatesAHubLast…, in the blocks' own order: the hub comes first, so the exact
+  // factor would fill every block; IC(0) keeps the star's blocks.
+  const int blocks = 20;
+  std::vector<std::pair<int, int>> star, chain;
+  for (int b = 1; b < blocks; ++b) star.emplace_back(0, b), chain.emplace_back(b - 1, b);
+  const std::vector<int> sizes(blocks, 12);
+  BlockCholesky incomplete(BlockCholesky::Fill::None);
+  incomplete.analyze(spd_upper(sizes, star, 5), sizes);
+  EXPECT_EQ(incomplete.nonzeros(), blocks * 78.0 + (blocks - 1) * 144.0);
+  // A chain in its own order fills nothing: IC(0) is the exact factor.
+  const Eigen::SparseMatrix<double> A = spd_upper(sizes, chain, 6);
+  incomplete.analyze(A, sizes);
+  ASSERT_TRUE(incomplete.factorize(A));
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(A.rows(), -1, 2);
+  const Eigen::VectorXd expected = dense_solution(A, b);
+  EXPECT_LE((incomplete.solve(b) - expected).norm(), 1e-12 * expected.norm());
+}
+
+TEST(IncompleteBlockCholesky, PreconditionsConjugateGradientsToTheSamePOnOneAndTwoThreads) {
+  // 400 bodies with 300 random couplings: IC(0) drops fill, so CG iterates; its levels of
+  // independent columns are split between threads.
+  const std::vector<int> sizes(400, 12);
+  const Eigen::SparseMatrix<double> A = spd_upper(sizes, random_couplings(400, 300, 6), 6);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(A.rows(), -3, 1);
+  std::vector<Eigen::VectorXd> p;
+  for (int threads : {1, 2}) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    const std::unique_ptr<LinearSolver> solver = make_linear_solver("block_cg");
+    EXPECT_TRUE(solver->is_iterative());
+    solver->set_block_sizes(sizes);
+    solver->set_relative_tolerance(1e-10);
+    solver->analyze_pattern(A);
+    ASSERT_TRUE(solver->factorize(A));
+    p.push_back(solver->solve(b));
+    const LinearSolveReport& r = solver->last_report();
+    EXPECT_TRUE(r.converged()) << r.reason;
+    EXPECT_GT(r.iterations, 1);
+    EXPECT_LE(r.relative_residual, 1e-10);
+  }
+  EXPECT_EQ(p[0], p[1]);
+  EXPECT_LE((A.selfadjointView<Eigen::Upper>() * p[0] - b).norm(), 1e-10 * b.norm());
 }
 
 }  // namespace

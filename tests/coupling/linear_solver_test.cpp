@@ -1,4 +1,5 @@
 /// Linear-solver layer: the 3×3-block layout of the assembled Hessian, every backend (CHOLMOD,
+/// the block Cholesky and block CG,
 /// PETSc KSP with each preconditioner) on the same SPD Newton systems from real scenes (stored
 /// under tests/coupling/data/linear_systems) to the requested residual, pattern reuse, failure
 /// reports on indefinite matrices and iteration caps, the CHOLMOD fallback, PETSc's options
@@ -236,6 +237,7 @@ const std::vector<std::string> kBackends{"cholmod",
                                          "petsc:gmres:icc",
                                          "petsc",
                                          "block_cholesky",
+                                         "block_cg",
                                          "auto"};
 
 TEST(LinearSolver, EveryBackendSolvesTheStoredSystemsToTheRequestedResidual) {
@@ -476,6 +478,58 @@ TEST(PetscSolver, ShiftsAnIncompleteCholeskyThatBreaksDownInsteadOfFallingBack) 
   EXPECT_LE((b - A.selfadjointView<Eigen::Upper>() * p).norm() / b.norm(), settings.relative_tolerance);
 }
 
+TEST(BlockCg, IsPetscsIncompleteCholeskyOverTheSameBlocks) {
+  // PETSc's ICC(0) over 3×3 blocks keeps the same blocks as IC(0) over an affine body's dense
+  // 12×12 ones (each 12×12 block is 16 stored 3×3 blocks), so CG takes the same iterations.
+  for (const std::string& name : {kSystems[0], kSystems[1]}) {
+    const LinearSystem s = load_linear_system(kDataDir, name);
+    const std::vector<int> sizes(s.upper.rows() / 12, 12);
+    std::vector<int> iterations;
+    std::vector<Eigen::VectorXd> p;
+    for (const char* backend : {"block_cg", "petsc:cg:icc"}) {
+      SCOPED_TRACE(std::string(backend) + " on " + name);
+      const std::unique_ptr<LinearSolver> solver = make_linear_solver(backend);
+      solver->set_block_sizes(sizes);
+      solver->set_relative_tolerance(1e-8);
+      solver->analyze_pattern(s.upper);
+      ASSERT_TRUE(solver->factorize(s.upper));
+      p.push_back(solver->solve(s.b));
+      ASSERT_TRUE(solver->last_report().converged()) << solver->last_report().reason;
+      iterations.push_back(solver->last_report().iterations);
+    }
+    EXPECT_EQ(iterations[0], iterations[1]) << name;  // measured: 1 on box_stack (a chain), 14 on house_of_cards
+    EXPECT_LE((p[0] - p[1]).norm(), 1e-6 * p[1].norm()) << name;
+  }
+}
+
+TEST(BlockCg, BoostsAnIncompleteCholeskyThatBreaksDown) {
+  // Kershaw's matrix as 3×3 blocks (see ShiftsAnIncompleteCholesky…): IC(0) over the blocks
+  // meets a pivot block that is not positive definite; "block_cg" builds it again from
+  // H + α diag(H) and CG still solves H p = b itself.
+  Eigen::Matrix4d K;
+  K << 3, -2, 0, 2, -2, 3, -2, 0, 0, -2, 3, -2, 2, 0, -2, 3;
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i; j < 4; ++j)
+      if (K(i, j) != 0)
+        for (int c = 0; c < 3; ++c) t.emplace_back(3 * i + c, 3 * j + c, K(i, j));
+  Eigen::SparseMatrix<double> A(12, 12);
+  A.setFromTriplets(t.begin(), t.end());
+  const std::vector<int> sizes{3, 3, 3, 3};
+  BlockCholesky incomplete(BlockCholesky::Fill::None);
+  incomplete.analyze(A, sizes);
+  EXPECT_FALSE(incomplete.factorize(A));
+  BlockCholeskySolver solver(BlockCholesky::Fill::None);
+  solver.set_block_sizes(sizes);
+  solver.set_relative_tolerance(1e-10);
+  solver.analyze_pattern(A);
+  ASSERT_TRUE(solver.factorize(A));
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(12, 1, 2);
+  const Eigen::VectorXd p = solver.solve(b);
+  EXPECT_TRUE(solver.last_report().converged()) << solver.last_report().reason;
+  EXPECT_LE((b - A.selfadjointView<Eigen::Upper>() * p).norm() / b.norm(), 1e-10);
+}
+
 TEST(PetscSolver, ReportsTheIterationCapAndFallsBackToCholmod) {
   const LinearSystem s = load_linear_system(kDataDir, kSystems[1]);
   for (const KrylovFallback fallback : {KrylovFallback::None, KrylovFallback::Cholmod}) {
@@ -602,9 +656,10 @@ TEST(AutoSolver, TakesTheBlockCholeskyWhenEveryBlockIsAnAffineBody) {
   }
 }
 
-TEST(AutoSolver, KeepsTheBlockCholeskyUpToItsOwnFlopBound) {
+TEST(AutoSolver, KeepsTheBlockCholeskyUpToItsOwnFlopBoundThenTakesBlockCg) {
   // 3-D lattices read as 12-blocks (four nodes each): one whose block factor costs between
-  // CHOLMOD's bound and the block Cholesky's stays direct, a larger one goes to PETSc.
+  // CHOLMOD's bound and the block Cholesky's stays direct, a larger one goes to the block
+  // Krylov method (PETSc only when there are soft nodes, TakesCholmodWhen…).
   std::optional<Eigen::SparseMatrix<double>> middle, above;
   for (int g = 4; g <= 20 && !above; g += 2) {
     Eigen::SparseMatrix<double> A = lattice_upper(g);
@@ -618,7 +673,7 @@ TEST(AutoSolver, KeepsTheBlockCholeskyUpToItsOwnFlopBound) {
   }
   ASSERT_TRUE(middle && above);
   for (const auto& [A, expected] : {std::pair{*middle, std::string("auto→block_cholesky")},
-                                    std::pair{*above, std::string("auto→petsc:cg:icc")}}) {
+                                    std::pair{*above, std::string("auto→block_cg")}}) {
     AutoSolver solver;
     solver.set_relative_tolerance(1e-10);
     solver.set_block_sizes(std::vector<int>(A.rows() / 12, 12));

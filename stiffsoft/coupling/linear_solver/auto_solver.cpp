@@ -30,10 +30,10 @@ void AutoSolver::choose(long nonzeros, int rows, const std::function<void(Linear
     return;
   }
   m_decided_nonzeros = nonzeros;
+  const bool affine_bodies_only =
+      !m_block_sizes.empty() && std::accumulate(m_block_sizes.begin(), m_block_sizes.end(), 0) == rows &&
+      std::all_of(m_block_sizes.begin(), m_block_sizes.end(), [](int s) { return s == 12; });
   if (rows < kAutoKrylovRows) {
-    const bool affine_bodies_only =
-        !m_block_sizes.empty() && std::accumulate(m_block_sizes.begin(), m_block_sizes.end(), 0) == rows &&
-        std::all_of(m_block_sizes.begin(), m_block_sizes.end(), [](int s) { return s == 12; });
     std::unique_ptr<LinearSolver> direct;
     double flops = 0, bound = kAutoCholmodFlops;
     if (affine_bodies_only) {
@@ -56,7 +56,10 @@ void AutoSolver::choose(long nonzeros, int rows, const std::function<void(Linear
     }
   }
   if (!m_krylov || !m_backend) {
-    m_backend = std::make_unique<PetscSolver>(default_petsc_method());
+    if (affine_bodies_only)
+      m_backend = std::make_unique<BlockCholeskySolver>(BlockCholesky::Fill::None);
+    else
+      m_backend = std::make_unique<PetscSolver>(default_petsc_method());
     m_krylov = true;
     if (m_eta > 0) m_backend->set_relative_tolerance(m_eta);
     if (!m_block_sizes.empty()) m_backend->set_block_sizes(m_block_sizes);

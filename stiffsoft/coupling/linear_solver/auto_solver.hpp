@@ -1,7 +1,8 @@
 #pragma once
 /// @file The "auto" linear solver: a direct factorisation when it is cheap (the block Cholesky
-/// for piles of affine bodies, CHOLMOD otherwise), PETSc's default Krylov method (CG with
-/// ICC(0)) when it is not, from the factorisation's own prediction of its cost.
+/// for piles of affine bodies, CHOLMOD otherwise), conjugate gradients with IC(0) when it is
+/// not (over the DOF blocks for piles of affine bodies, PETSc's ICC(0) otherwise), from the
+/// factorisation's own prediction of its cost.
 
 #include <functional>
 #include <memory>
@@ -33,13 +34,16 @@ constexpr int kAutoKrylovRows = 50000;
 /// fraction since the last decision (contacts come and go at every few Newton iterations).
 constexpr double kAutoRedecideChange = 0.25;
 
-/// Delegates to a direct solver or to PETSc (default_petsc_method()): below kAutoKrylovRows rows
+/// Delegates to a direct solver or to a Krylov one: below kAutoKrylovRows rows
 /// the block Cholesky (when every DOF block given by set_block_sizes() is an affine body's 12:
 /// its 12×12 dense blocks factorise 2.7–3.4× faster than CHOLMOD's simplicial method,
 /// docs/benchmarks.md) analyses the pattern and is kept when it predicts at most
 /// kAutoBlockCholeskyFlops, or else CHOLMOD does and is kept at most kAutoCholmodFlops for the
 /// factorisation (soft nodes' 3×3 blocks fill like a 3-D mesh,
-/// which CHOLMOD's supernodes and PETSc handle better); otherwise PETSc. The decision is
+/// which CHOLMOD's supernodes and PETSc handle better); otherwise "block_cg" when every DOF
+/// block is an affine body's (its 12×12 IC(0) in parallel, solve phase 1.7–2× cheaper than
+/// PETSc's on `bricks_900` at one thread, docs/benchmarks.md) and PETSc
+/// (default_petsc_method()) when there are soft nodes. The decision is
 /// revisited at an analyze_pattern() whose number of stored entries differs by more than
 /// kAutoRedecideChange from the last decision's.
 class AutoSolver final : public LinearSolver {

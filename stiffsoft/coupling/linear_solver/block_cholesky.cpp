@@ -7,7 +7,9 @@
 #include <Eigen/OrderingMethods>
 #include <algorithm>
 #include <atomic>
+#include <cstdint>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -18,33 +20,39 @@ namespace stiffsoft {
 
 namespace {
 
-/// How the columns of one level of the elimination tree are split between threads: levels with
-/// fewer than `minimum` columns run on the calling thread, larger ones in tasks of at least
-/// `grain` columns. A task costs a few µs to hand out, a 12×12 column's factorisation about
-/// 1 µs and its triangular solves about 0.1 µs.
+/// How the columns of one level are split between threads, by the level's work in some unit:
+/// levels with less than `minimum` run on the calling thread, larger ones in tasks of about
+/// `grain`. A task costs a few µs to hand out.
 struct LevelSplit {
   int minimum, grain;
 };
+/// The factorisation's unit is a column: a 12×12 column's factorisation costs about 1 µs.
 constexpr LevelSplit kFactorSplit{32, 16};
-constexpr LevelSplit kSolveSplit{128, 64};
+/// The triangular solves' unit is a block of L: a 12×12 block's product costs about 0.05 µs.
+/// (A level of IC(0) on a pile is a layer of bodies, about 100 columns of 6 blocks each.)
+constexpr LevelSplit kSolveSplit{256, 128};
 
 /// Blocks per task of the comparisons and copies around the factorisation: a 12×12 block's
 /// copy costs about 50 ns, so a task of 32 blocks outweighs its hand-out.
 constexpr std::size_t kCopyGrain = 32;
 
-/// Calls f(j) for every column, level by level (children before parents when `upward`,
-/// parents first otherwise); the columns of one level are independent.
+/// Calls f(j) for every column, level by level (the columns that update a column first when
+/// `upward`, last otherwise); the columns of one level are independent. work[l] is level l's
+/// work in the split's unit (empty: its number of columns).
 template <class F>
-void for_levels(const std::vector<int>& offsets, const std::vector<int>& columns, bool upward, LevelSplit split, F&& f) {
+void for_levels(const std::vector<int>& offsets, const std::vector<int>& columns, bool upward, LevelSplit split,
+                const std::vector<int>& work, F&& f) {
   const int levels = int(offsets.size()) - 1;
   for (int l = 0; l < levels; ++l) {
     const int level = upward ? l : levels - 1 - l;
     const int begin = offsets[level], end = offsets[level + 1];
-    if (end - begin < split.minimum) {
+    const int units = work.empty() ? end - begin : work[level];
+    if (units < split.minimum) {
       for (int k = begin; k < end; ++k) f(columns[k]);
       continue;
     }
-    tbb::parallel_for(tbb::blocked_range<int>(begin, end, split.grain), [&](const tbb::blocked_range<int>& r) {
+    const int grain = std::max(1, int(std::int64_t(split.grain) * (end - begin) / units));
+    tbb::parallel_for(tbb::blocked_range<int>(begin, end, grain), [&](const tbb::blocked_range<int>& r) {
       for (int k = r.begin(); k < r.end(); ++k) f(columns[k]);
     });
   }
@@ -117,34 +125,34 @@ std::vector<int> minimum_degree_order(const std::vector<std::vector<int>>& adjac
   return std::vector<int>(ordering.indices().data(), ordering.indices().data() + nb);
 }
 
-/// The block pattern of L in the elimination order and each column's height in the
-/// elimination tree (0 for a leaf; a column's descendants all have smaller heights).
-struct Elimination {
-  std::vector<std::vector<int>> structure;  ///< struct(j): the block rows below j, ascending
-  std::vector<int> height;
-};
-
-/// struct(j) = the later neighbours of j ∪ the structs of j's children minus j, and
-/// parent(j) = min struct(j).
-Elimination eliminate(const std::vector<std::vector<int>>& adjacent, const std::vector<int>& order,
-                      const std::vector<int>& position) {
+/// struct(j), the block rows below j in column j of L (ascending), of the exact factor:
+/// the later neighbours of j ∪ the structs of j's children minus j, where parent(j) = min struct(j).
+std::vector<std::vector<int>> eliminate(const std::vector<std::vector<int>>& adjacent, const std::vector<int>& order,
+                                        const std::vector<int>& position) {
   const int nb = int(order.size());
-  Elimination e{std::vector<std::vector<int>>(nb), std::vector<int>(nb, 0)};
-  std::vector<std::vector<int>> children(nb);
+  std::vector<std::vector<int>> structure(nb), children(nb);
   for (int j = 0; j < nb; ++j) {
-    std::vector<int>& s = e.structure[j];
+    std::vector<int>& s = structure[j];
     for (int I : adjacent[order[j]])
       if (position[I] > j) s.push_back(position[I]);
-    for (int c : children[j]) {
-      for (int i : e.structure[c])
+    for (int c : children[j])
+      for (int i : structure[c])
         if (i != j) s.push_back(i);
-      e.height[j] = std::max(e.height[j], e.height[c] + 1);
-    }
     std::sort(s.begin(), s.end());
     s.erase(std::unique(s.begin(), s.end()), s.end());
     if (!s.empty()) children[s.front()].push_back(j);
   }
-  return e;
+  return structure;
+}
+
+/// struct(j) of IC(0) in the blocks' own order: the later neighbours of j, ascending.
+std::vector<std::vector<int>> later_neighbours(std::vector<std::vector<int>> adjacent) {
+  for (int j = 0; j < int(adjacent.size()); ++j) {
+    std::vector<int>& s = adjacent[j];
+    s.erase(std::remove_if(s.begin(), s.end(), [&](int i) { return i < j; }), s.end());
+    std::sort(s.begin(), s.end());
+  }
+  return adjacent;
 }
 
 /// D ← L⁻¹ in place, L the lower Cholesky factor of the s × s block whose lower triangle D
@@ -195,10 +203,13 @@ void BlockCholesky::analyze(const BlockUpper& H) {
   std::vector<int> sizes(nb);
   for (int b = 0; b < nb; ++b) sizes[b] = H.size(b);
   const std::vector<std::vector<int>> adjacent = block_graph(H);
-  const std::vector<int> order = minimum_degree_order(adjacent);
+  std::vector<int> order(nb);
+  std::iota(order.begin(), order.end(), 0);
+  if (m_fill == Fill::Complete) order = minimum_degree_order(adjacent);
   std::vector<int> position(nb);
   for (int k = 0; k < nb; ++k) position[order[k]] = k;
-  const auto [structure, height] = eliminate(adjacent, order, position);
+  const std::vector<std::vector<int>> structure =
+      m_fill == Fill::Complete ? eliminate(adjacent, order, position) : later_neighbours(adjacent);
 
   m_columns.resize(nb);
   m_column_offsets.assign(nb + 1, 0);
@@ -236,18 +247,27 @@ void BlockCholesky::analyze(const BlockUpper& H) {
       m_updates[fill[j]++] = {k, p};
       const double sj = m_columns[j].size;
       m_flops += sj * sj * sk;
-      for (int q = p + 1; q < int(structure[k].size()); ++q) m_flops += 2 * m_columns[structure[k][q]].size * sj * sk;
+      for (int q = p + 1; q < int(structure[k].size()); ++q)
+        if (std::binary_search(structure[j].begin(), structure[j].end(), structure[k][q]))  // all of them when complete
+          m_flops += 2 * m_columns[structure[k][q]].size * sj * sk;
     }
   }
 
-  // Columns by height: a column's descendants all have smaller heights.
-  const int levels = nb ? 1 + *std::max_element(height.begin(), height.end()) : 0;
+  // Columns by depth in the update graph: depth(j) = 1 + the largest depth of the columns that
+  // update j (0 for none), so a level's columns depend only on earlier levels. For the exact
+  // factor that is the height in the elimination tree (a column's updates are its descendants).
+  std::vector<int> depth(nb, 0);
+  for (int k = 0; k < nb; ++k)
+    for (int j : structure[k]) depth[j] = std::max(depth[j], depth[k] + 1);
+  const int levels = nb ? 1 + *std::max_element(depth.begin(), depth.end()) : 0;
   m_level_offsets.assign(levels + 1, 0);
-  for (int j = 0; j < nb; ++j) ++m_level_offsets[height[j] + 1];
+  for (int j = 0; j < nb; ++j) ++m_level_offsets[depth[j] + 1];
   for (int l = 0; l < levels; ++l) m_level_offsets[l + 1] += m_level_offsets[l];
   m_by_level.resize(nb);
   std::vector<int> next(m_level_offsets.begin(), m_level_offsets.end() - 1);
-  for (int j = 0; j < nb; ++j) m_by_level[next[height[j]]++] = j;
+  for (int j = 0; j < nb; ++j) m_by_level[next[depth[j]]++] = j;
+  m_level_blocks.assign(levels, 0);
+  for (int j = 0; j < nb; ++j) m_level_blocks[depth[j]] += 1 + m_column_offsets[j + 1] - m_column_offsets[j];
 
   // Where each stored block of H goes, and where its numbers are kept between factorisations;
   // which blocks of L no block of H fills.
@@ -299,7 +319,7 @@ void BlockCholesky::analyze(const BlockUpper& H) {
   m_uniform = uniform && nb ? sizes.front() : 0;
 }
 
-void BlockCholesky::load_column(int j, const BlockUpper& H, double shift) {
+void BlockCholesky::load_column(int j, const BlockUpper& H, double shift, double boost) {
   // L_jj's upper triangle keeps what the last factorisation left there: nothing uses it before
   // the inversion sets it to zero.
   for (int u = m_unfilled_offsets[j]; u < m_unfilled_offsets[j + 1]; ++u)
@@ -318,7 +338,7 @@ void BlockCholesky::load_column(int j, const BlockUpper& H, double shift) {
     } else {
       for (int c = 0; c < sj; ++c)
         for (int r = 0; r <= c; ++r) l[c + std::size_t(r) * sj] = a[r + std::size_t(c) * si];
-      for (int c = 0; c < sj; ++c) l[c + std::size_t(c) * sj] += shift;
+      for (int c = 0; c < sj; ++c) l[c + std::size_t(c) * sj] = l[c + std::size_t(c) * sj] * (1 + boost) + shift;
     }
   }
 }
@@ -339,10 +359,12 @@ bool BlockCholesky::factor_column(int j, std::vector<int>& slot) {
     subtract_lower_gram<S>(D, Ljk);
     for (int q = first + p + 1; q < m_column_offsets[k + 1]; ++q) {
       const Entry& e = m_entries[q];
+      if (slot[e.row] < 0) continue;  // IC(0) drops the fill
       const int si = m_columns[e.row].size;
       Block<S>(pool + m_entries[slot[e.row]].at, si, s) -= Block<S>(pool + e.at, si, sk).lazyProduct(Ljk.transpose());
     }
   }
+  for (int e = begin; e < end; ++e) slot[m_entries[e].row] = -1;
   // D's lower triangle holds the updated pivot block; the pool keeps L_jj⁻¹ in its place, so
   // that the blocks below and both triangular solves are plain products.
   if (!invert_cholesky_factor<S>(D, s)) return false;
@@ -353,26 +375,26 @@ bool BlockCholesky::factor_column(int j, std::vector<int>& slot) {
   return true;
 }
 
-bool BlockCholesky::factorize(const Eigen::SparseMatrix<double>& upper) {
+bool BlockCholesky::factorize(const Eigen::SparseMatrix<double>& upper, double boost) {
   if (!analysed()) throw std::logic_error("BlockCholesky::factorize before analyze");
   std::vector<int> sizes(m_factorised.num_blocks());
   for (int b = 0; b < m_factorised.num_blocks(); ++b) sizes[b] = m_factorised.size(b);
   m_gathered = gather_blocks(upper, sizes);
-  return factorize(m_gathered.blocks);
+  return factorize(m_gathered.blocks, 0, boost);
 }
 
-bool BlockCholesky::factorize(const BlockUpper& H, double shift) {
+bool BlockCholesky::factorize(const BlockUpper& H, double shift, double boost) {
   if (!analysed()) throw std::logic_error("BlockCholesky::factorize before analyze");
   if (!same_blocks(H, m_factorised))
     throw std::invalid_argument("BlockCholesky::factorize: not the block pattern analyze() was given");
   const std::size_t blocks = m_target.size(), nb = m_columns.size();
   const auto numbers = [&](std::size_t k) { return m_input_at[k + 1] - m_input_at[k]; };
-  // After a successful factorisation of the same pattern and shift only the columns whose
-  // blocks changed and the columns they update (their ancestors) are computed again: the
+  // After a successful factorisation of the same pattern, shift and boost only the columns whose
+  // blocks changed and the columns they update (in turn) are computed again: the
   // others' blocks of L are those a full factorisation would give, bit for bit (friction's
   // revised directions change a few stencils' blocks and factorise again).
   std::vector<char> redo(nb, 1);
-  if (m_kept && shift == m_shift) {
+  if (m_kept && shift == m_shift && boost == m_boost) {
     std::vector<char> changed(blocks);
     for_each_item(blocks, kCopyGrain, [&](std::size_t k) {
       changed[k] = !std::equal(H.values[k], H.values[k] + numbers(k), m_input.data() + m_input_at[k]);
@@ -380,15 +402,15 @@ bool BlockCholesky::factorize(const BlockUpper& H, double shift) {
     std::fill(redo.begin(), redo.end(), 0);
     for (std::size_t k = 0; k < blocks; ++k)
       if (changed[k]) redo[m_target[k].column] = 1;
-    for (int j : m_by_level)  // a column's descendants come before it
+    for (int j : m_by_level)  // the columns that update a column come before it
       for (int u = m_update_offsets[j]; u < m_update_offsets[j + 1] && !redo[j]; ++u) redo[j] = redo[m_updates[u].column];
   }
   m_refactored = std::size_t(std::count(redo.begin(), redo.end(), 1));
   tbb::enumerable_thread_specific<std::vector<int>> slots(std::vector<int>(nb, -1));
   std::atomic<bool> ok{true};
-  for_levels(m_level_offsets, m_by_level, true, kFactorSplit, [&](int j) {
+  for_levels(m_level_offsets, m_by_level, true, kFactorSplit, {}, [&](int j) {
     if (!redo[j] || !ok.load(std::memory_order_relaxed)) return;
-    load_column(j, H, shift);
+    load_column(j, H, shift, boost);
     const bool column_ok = m_uniform == 12 ? factor_column<12>(j, slots.local())
                            : m_uniform == 3 ? factor_column<3>(j, slots.local())
                                             : factor_column<Eigen::Dynamic>(j, slots.local());
@@ -402,6 +424,7 @@ bool BlockCholesky::factorize(const BlockUpper& H, double shift) {
       if (redo[m_target[k].column]) std::copy(H.values[k], H.values[k] + numbers(k), m_input.data() + m_input_at[k]);
     });
     m_shift = shift;
+    m_boost = boost;
   }
   return ok;
 }
@@ -411,7 +434,7 @@ void BlockCholesky::solve_in_place(Eigen::VectorXd& x) const {
   const double* pool = m_pool.data();
   const auto L = [&](std::size_t at, int rows, int cols) { return Eigen::Map<const Eigen::Matrix<double, S, S>>(pool + at, rows, cols); };
   // L y = b, children first: y_j = L_jj⁻¹ (b_j − Σ_k L_jk y_k).
-  for_levels(m_level_offsets, m_by_level, true, kSolveSplit, [&](int j) {
+  for_levels(m_level_offsets, m_by_level, true, kSolveSplit, m_level_blocks, [&](int j) {
     const Column& cj = m_columns[j];
     Segment<S> y(x.data() + cj.offset, cj.size);
     for (int u = m_update_offsets[j]; u < m_update_offsets[j + 1]; ++u) {
@@ -422,7 +445,7 @@ void BlockCholesky::solve_in_place(Eigen::VectorXd& x) const {
     y = Eigen::Matrix<double, S, 1>(L(cj.diagonal, cj.size, cj.size).lazyProduct(y));  // L_jj⁻¹: zero above its diagonal
   });
   // Lᵀ x = y, parents first: x_j = L_jj⁻ᵀ (y_j − Σ_i L_ijᵀ x_i).
-  for_levels(m_level_offsets, m_by_level, false, kSolveSplit, [&](int j) {
+  for_levels(m_level_offsets, m_by_level, false, kSolveSplit, m_level_blocks, [&](int j) {
     const Column& cj = m_columns[j];
     Segment<S> y(x.data() + cj.offset, cj.size);
     for (int e = m_column_offsets[j]; e < m_column_offsets[j + 1]; ++e) {

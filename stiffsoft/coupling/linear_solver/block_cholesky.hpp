@@ -23,8 +23,20 @@ namespace stiffsoft {
 /// Deterministic: every block of L is computed by the same operations in the same order
 /// whatever the thread count (the parallelism is over independent columns of one level of the
 /// elimination tree), so factors and solutions are the same bit for bit.
+///
+/// With Fill::None it is the incomplete factorisation IC(0) over the blocks instead: the DOF
+/// blocks in their own order, L keeping exactly the blocks of H (every update that would fill
+/// another block dropped), a preconditioner for conjugate gradients. Its columns are grouped by
+/// their depth in the graph of which columns update which, so a level's are independent too.
 class BlockCholesky {
  public:
+  /// Which blocks of L the factorisation may fill.
+  enum class Fill {
+    Complete,  ///< the exact factor, in a fill-reducing order
+    None       ///< IC(0): only the blocks H stores, in the blocks' own order
+  };
+  /// A factorisation of the given kind (the exact one by default).
+  explicit BlockCholesky(Fill fill = Fill::Complete) : m_fill(fill) {}
   /// Symbolic analysis of H's block pattern: ordering, elimination tree, the block pattern of
   /// L and where each stored block of H goes. Throws std::invalid_argument when a stored
   /// block lies below the diagonal. The pattern analysed last keeps its analysis (and the
@@ -36,11 +48,13 @@ class BlockCholesky {
   /// Numeric factorisation of H + shift·I (H of the analysed pattern, else std::invalid_argument;
   /// std::logic_error before analyze()); false when a pivot block is not positive definite
   /// (numerically), after which solve() must not be called. After a successful factorisation
-  /// of the same analysis and shift, only the columns whose blocks changed and their ancestors
-  /// in the elimination tree are computed again (the same factor, bit for bit).
-  bool factorize(const BlockUpper& H, double shift = 0);
-  /// factorize() of the blocks of `upper`, of the pattern analyze() was given.
-  bool factorize(const Eigen::SparseMatrix<double>& upper);
+  /// of the same analysis, shift and boost, only the columns whose blocks changed and the
+  /// columns they update are computed again (the same factor, bit for bit). `boost` > 0
+  /// factorises H + shift·I + boost·diag(H) instead (Manteuffel's shift, for an IC(0) that
+  /// breaks down on a positive definite H); multiply() keeps H + shift·I.
+  bool factorize(const BlockUpper& H, double shift = 0, double boost = 0);
+  /// factorize() of the blocks of `upper`, of the pattern analyze() was given (no shift).
+  bool factorize(const Eigen::SparseMatrix<double>& upper, double boost = 0);
   /// Columns (DOF blocks) the last factorize() computed: all of them, or fewer when it could
   /// keep some from the factorisation before.
   std::size_t refactored_columns() const { return m_refactored; }
@@ -75,12 +89,13 @@ class BlockCholesky {
   };
   /// Computes column j of L in place (its updates from earlier columns, then L_jj and the
   /// blocks below it); false when the pivot block is not positive definite. `slot` maps a block
-  /// row to its entry in column j (scratch of one thread). S: the common block size or Dynamic.
+  /// row to its entry in column j, −1 for the rows column j lacks (scratch of one thread, left
+  /// all −1). S: the common block size or Dynamic.
   template <int S>
   bool factor_column(int j, std::vector<int>& slot);
-  /// Starts column j of L from H + shift·I: its blocks of H copied into the pool, its fill-in
-  /// zeroed. Each column owns its places in the pool, so columns load in parallel.
-  void load_column(int j, const BlockUpper& H, double shift);
+  /// Starts column j of L from H + shift·I + boost·diag(H): its blocks of H copied into the
+  /// pool, its fill-in zeroed. Each column owns its places in the pool, so columns load in parallel.
+  void load_column(int j, const BlockUpper& H, double shift, double boost);
   /// x ← L⁻ᵀ L⁻¹ x (the original DOF order throughout: P only decides the order of columns).
   template <int S>
   void solve_in_place(Eigen::VectorXd& x) const;
@@ -90,7 +105,9 @@ class BlockCholesky {
   std::vector<Entry> m_entries;                  // off-diagonal blocks of L, by column
   std::vector<int> m_update_offsets;             // m_updates[m_update_offsets[j] …): the k that update j
   std::vector<Update> m_updates;
-  std::vector<int> m_level_offsets, m_by_level;  // columns grouped by height in the elimination tree
+  std::vector<int> m_level_offsets, m_by_level;  // columns grouped by their depth in the update graph
+  std::vector<int> m_level_blocks;               // blocks of L in each level's columns
+  Fill m_fill;
   /// Where a stored block of H goes: L_jj's place (its upper triangle into L_jj's lower one),
   /// a block of L as it is, or a block of L transposed (when its block row comes first in the
   /// elimination order); `column` is the column of L that holds it.
@@ -112,8 +129,8 @@ class BlockCholesky {
   std::vector<std::size_t> m_input_at;           // per stored block of H: where m_input holds it
   std::vector<double> m_input;                   // H's blocks at the last successful factorisation
   BlockUpper m_factorised;                       // H's pattern, its values in m_input
-  double m_shift = 0;                            // … and the shift factorised with them
-  bool m_kept = false;                           // whether m_input and m_shift hold a complete factor's H
+  double m_shift = 0, m_boost = 0;               // … and the shift and boost factorised with them
+  bool m_kept = false;                           // whether m_input, m_shift and m_boost hold a complete factor's H
   GatheredBlocks m_gathered;                     // the blocks of the last CSC given
   std::vector<double> m_pool;                    // L's blocks
   int m_uniform = 0;                             // the common block size, 0 when they differ

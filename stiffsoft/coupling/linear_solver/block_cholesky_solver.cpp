@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include <stiffsoft/coupling/linear_solver/block_sparse_pattern.hpp>
+#include <stiffsoft/coupling/linear_solver/conjugate_gradients.hpp>
 #include <stiffsoft/coupling/linear_solver/refined_solve.hpp>
 
 namespace stiffsoft {
@@ -27,7 +28,7 @@ bool BlockCholeskySolver::timed_factorize(Factorize&& factorize) {
   m_factorized = factorize();
   if (!m_factorized) {
     m_report.status = LinearSolveStatus::Indefinite;
-    m_report.reason = "block Cholesky: a pivot block is not positive definite";
+    m_report.reason = name() + ": a pivot block is not positive definite";
   }
   m_report.setup_seconds = seconds_since(start);
   return m_factorized;
@@ -36,8 +37,17 @@ bool BlockCholeskySolver::timed_factorize(Factorize&& factorize) {
 bool BlockCholeskySolver::factorize(const Eigen::SparseMatrix<double>& upper) {
   return timed_factorize([&] {
     if (!m_factor.analysed()) analyze_pattern(upper);
-    return m_factor.factorize(upper);
+    return factorize_with_boost([&](double boost) { return m_factor.factorize(upper, boost); });
   });
+}
+
+template <class Factor>
+bool BlockCholeskySolver::factorize_with_boost(Factor&& factor) {
+  if (factor(0.0)) return true;
+  if (!m_krylov) return false;
+  for (double boost = 1e-3; boost <= 1; boost *= 10)
+    if (factor(boost)) return true;
+  return false;
 }
 
 void BlockCholeskySolver::analyze_blocks(const BlockUpper& H) { m_factor.analyze(H); }
@@ -45,7 +55,7 @@ void BlockCholeskySolver::analyze_blocks(const BlockUpper& H) { m_factor.analyze
 bool BlockCholeskySolver::factorize_blocks(const BlockUpper& H, double shift) {
   return timed_factorize([&] {
     if (!m_factor.analysed()) m_factor.analyze(H);
-    return m_factor.factorize(H, shift);
+    return factorize_with_boost([&](double boost) { return m_factor.factorize(H, shift, boost); });
   });
 }
 
@@ -55,9 +65,10 @@ Eigen::VectorXd BlockCholeskySolver::solve(const Eigen::VectorXd& b) {
     m_report.status = LinearSolveStatus::Indefinite;
     return Eigen::VectorXd::Constant(b.size(), std::numeric_limits<double>::quiet_NaN());
   }
-  Eigen::VectorXd p = refined_solve([&](const Eigen::VectorXd& x) { return m_factor.multiply(x); }, b,
-                                    [&](const Eigen::VectorXd& rhs) { return m_factor.solve(rhs); }, "block Cholesky",
-                                    m_report);
+  const auto multiply = [&](const Eigen::VectorXd& x) { return m_factor.multiply(x); };
+  const auto factor_solve = [&](const Eigen::VectorXd& rhs) { return m_factor.solve(rhs); };
+  Eigen::VectorXd p = m_krylov ? conjugate_gradients(multiply, factor_solve, b, m_eta, kBlockCgIterationCap, name(), m_report)
+                               : refined_solve(multiply, b, factor_solve, name(), m_report);
   m_report.solve_seconds = seconds_since(start);
   return p;
 }

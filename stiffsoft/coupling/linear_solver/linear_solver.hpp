@@ -59,6 +59,7 @@ class LinearSolver {
 /// The backend called `name`; throws std::invalid_argument for an unknown one. Names:
 ///  - "cholmod": CHOLMOD Cholesky (supernodal or simplicial, see CholmodSolver);
 ///  - "block_cholesky": Cholesky over the dense DOF blocks (see BlockCholeskySolver);
+///  - "block_cg": conjugate gradients with IC(0) over the dense DOF blocks (see BlockCholeskySolver);
 ///  - "petsc": PETSc KSP with the default method (see default_petsc_method());
 ///  - "petsc:KSP" or "petsc:KSP:PC": KSP ∈ {cg, minres, gmres}, PC ∈ {none, jacobi, pbjacobi
 ///    (3×3 blocks), vpbjacobi (DOF blocks, 12×12 / 3×3), icc, gamg, hypre (BoomerAMG)}, e.g.

@@ -18,7 +18,8 @@ std::map<std::string, std::function<std::unique_ptr<LinearSolver>()>>& registry(
 }
 
 bool is_built_in(const std::string& name) {
-  return name == "cholmod" || name == "block_cholesky" || name == "auto" || name == "petsc" || name.rfind("petsc:", 0) == 0;
+  return name == "cholmod" || name == "block_cholesky" || name == "block_cg" || name == "auto" || name == "petsc" ||
+         name.rfind("petsc:", 0) == 0;
 }
 
 std::vector<std::string> split(const std::string& s, char separator) {
@@ -70,7 +71,8 @@ const char* to_string(LinearSolveStatus status) {
 }
 
 void check_linear_solver_name(const std::string& name) {
-  if (name == "cholmod" || name == "block_cholesky" || name == "auto" || registry().count(name)) return;
+  if (name == "cholmod" || name == "block_cholesky" || name == "block_cg" || name == "auto" || registry().count(name))
+    return;
   if (name == "petsc" || name.rfind("petsc:", 0) == 0) {
     petsc_settings(name);
     return;
@@ -81,6 +83,7 @@ void check_linear_solver_name(const std::string& name) {
 std::unique_ptr<LinearSolver> make_linear_solver(const std::string& name) {
   if (name == "cholmod") return std::make_unique<CholmodSolver>();
   if (name == "block_cholesky") return std::make_unique<BlockCholeskySolver>();
+  if (name == "block_cg") return std::make_unique<BlockCholeskySolver>(BlockCholesky::Fill::None);
   if (name == "auto") return std::make_unique<AutoSolver>();
   if (name == "petsc" || name.rfind("petsc:", 0) == 0)
     return std::make_unique<PetscSolver>(petsc_settings(name));
@@ -98,7 +101,7 @@ std::vector<std::string> linear_solver_names() {
   std::vector<std::string> names{"cholmod", "auto", "petsc",
                                  "petsc:KSP[:PC] (KSP: cg, minres, gmres; PC: none, "
                                  "jacobi, pbjacobi, vpbjacobi, icc, gamg, hypre)",
-                                 "block_cholesky"};
+                                 "block_cholesky", "block_cg"};
   for (const auto& [name, factory] : registry()) names.push_back(name);
   return names;
 }
