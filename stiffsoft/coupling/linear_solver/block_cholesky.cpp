@@ -248,7 +248,8 @@ void BlockCholesky::analyze(const BlockUpper& H) {
       const double sj = m_columns[j].size;
       m_flops += sj * sj * sk;
       for (int q = p + 1; q < int(structure[k].size()); ++q)
-        if (std::binary_search(structure[j].begin(), structure[j].end(), structure[k][q]))  // all of them when complete
+        if (m_fill == Fill::Complete ||  // IC(0) drops the pairs that would fill
+            std::binary_search(structure[j].begin(), structure[j].end(), structure[k][q]))
           m_flops += 2 * m_columns[structure[k][q]].size * sj * sk;
     }
   }
