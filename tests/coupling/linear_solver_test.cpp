@@ -445,17 +445,33 @@ TEST(LinearSolver, ReportsAnIndefiniteMatrixInsteadOfReturningADirection) {
     // Measured: all 14 on house_of_cards; on box_stack (a chain of contacts) CG with ICC solves
     // H p = b exactly in one iteration and p is a descent direction, the other 12 report.
     EXPECT_GE(reported, 12);
+    // block_cg: IC(0) fails at every boost, or CG (or its exact fallback) reports, or what it
+    // returns solves H p = b and is a descent direction.
+    BlockCholeskySolver block_cg(BlockCholesky::Fill::None);
+    block_cg.set_block_sizes(std::vector<int>(A.rows() / 12, 12));
+    block_cg.analyze_pattern(A);
+    if (block_cg.factorize(A)) {
+      const Eigen::VectorXd p = block_cg.solve(s.b);
+      const LinearSolveReport& r = block_cg.last_report();
+      if (p.allFinite()) {
+        EXPECT_TRUE(r.converged()) << r.reason;
+        EXPECT_LE((s.b - A.selfadjointView<Eigen::Upper>() * p).norm() / s.b.norm(), 1e-8);
+        EXPECT_GT(s.b.dot(p), 0);
+      } else {
+        EXPECT_EQ(r.status, LinearSolveStatus::Indefinite) << r.reason;
+      }
+    } else {
+      EXPECT_EQ(block_cg.last_report().status, LinearSolveStatus::Indefinite);
+    }
   }
 }
 
-TEST(PetscSolver, ShiftsAnIncompleteCholeskyThatBreaksDownInsteadOfFallingBack) {
-  // Kershaw's matrix (J. Comput. Phys. 26, 1978) is positive definite, yet its incomplete
-  // Cholesky ICC(0) meets a negative pivot. As 3×3 blocks (K ⊗ I₃) PETSc's block ICC applies no
-  // Manteuffel shift of its own: CG stops at once with an indefinite preconditioner, and the
-  // solver must rebuild it from H + α diag(H) rather than hand the solve to CHOLMOD.
+/// Kershaw's matrix K (J. Comput. Phys. 26, 1978) as 3×3 blocks, K ⊗ I₃, upper triangle: positive
+/// definite, yet its incomplete Cholesky IC(0) meets a negative pivot.
+Eigen::SparseMatrix<double> kershaw_blocks() {
   Eigen::Matrix4d K;
   K << 3, -2, 0, 2, -2, 3, -2, 0, 0, -2, 3, -2, 2, 0, -2, 3;
-  ASSERT_GT(Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d>(K).eigenvalues().minCoeff(), 0);
+  EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d>(K).eigenvalues().minCoeff(), 0);
   std::vector<Eigen::Triplet<double>> t;
   for (int i = 0; i < 4; ++i)
     for (int j = i; j < 4; ++j)
@@ -463,6 +479,14 @@ TEST(PetscSolver, ShiftsAnIncompleteCholeskyThatBreaksDownInsteadOfFallingBack) 
         for (int c = 0; c < 3; ++c) t.emplace_back(3 * i + c, 3 * j + c, K(i, j));
   Eigen::SparseMatrix<double> A(12, 12);
   A.setFromTriplets(t.begin(), t.end());
+  return A;
+}
+
+TEST(PetscSolver, ShiftsAnIncompleteCholeskyThatBreaksDownInsteadOfFallingBack) {
+  // As 3×3 blocks PETSc's block ICC applies no Manteuffel shift of its own: CG stops at once
+  // with an indefinite preconditioner, and the solver must rebuild it from H + α diag(H) rather
+  // than hand the solve to CHOLMOD.
+  const Eigen::SparseMatrix<double> A = kershaw_blocks();
   const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(12, 1, 2);
   PetscSolverSettings settings;  // CG + ICC(0), CHOLMOD as the fallback
   ASSERT_EQ(settings.pc_type, "icc");
@@ -502,19 +526,30 @@ TEST(BlockCg, IsPetscsIncompleteCholeskyOverTheSameBlocks) {
   }
 }
 
+TEST(BlockCg, FallsBackToTheExactFactorWhenConjugateGradientsCannotFinish) {
+  // A tolerance below round-off: CG stops at its iteration cap (or at a curvature that
+  // round-off made ≤ 0), and the exact block factor of the same H solves instead.
+  const LinearSystem s = load_linear_system(kDataDir, kSystems[1]);
+  BlockCholeskySolver solver(BlockCholesky::Fill::None);
+  solver.set_block_sizes(std::vector<int>(s.upper.rows() / 12, 12));
+  solver.set_relative_tolerance(1e-20);
+  solver.analyze_pattern(s.upper);
+  ASSERT_TRUE(solver.factorize(s.upper));
+  const Eigen::VectorXd p = solver.solve(s.b);
+  const LinearSolveReport& r = solver.last_report();
+  EXPECT_TRUE(r.fallback_used);
+  EXPECT_NE(r.primary_failure.find("block_cg"), std::string::npos) << r.primary_failure;
+  EXPECT_TRUE(r.converged()) << r.reason;
+  EXPECT_GT(r.iterations, 0);
+  EXPECT_LE(relative_residual(s, p), 1e-10);
+  EXPECT_NEAR(r.relative_residual, relative_residual(s, p), 1e-12);
+}
+
 TEST(BlockCg, BoostsAnIncompleteCholeskyThatBreaksDown) {
-  // Kershaw's matrix as 3×3 blocks (see ShiftsAnIncompleteCholesky…): IC(0) over the blocks
+  // Kershaw's matrix as 3×3 blocks: IC(0) over the blocks
   // meets a pivot block that is not positive definite; "block_cg" builds it again from
   // H + α diag(H) and CG still solves H p = b itself.
-  Eigen::Matrix4d K;
-  K << 3, -2, 0, 2, -2, 3, -2, 0, 0, -2, 3, -2, 2, 0, -2, 3;
-  std::vector<Eigen::Triplet<double>> t;
-  for (int i = 0; i < 4; ++i)
-    for (int j = i; j < 4; ++j)
-      if (K(i, j) != 0)
-        for (int c = 0; c < 3; ++c) t.emplace_back(3 * i + c, 3 * j + c, K(i, j));
-  Eigen::SparseMatrix<double> A(12, 12);
-  A.setFromTriplets(t.begin(), t.end());
+  const Eigen::SparseMatrix<double> A = kershaw_blocks();
   const std::vector<int> sizes{3, 3, 3, 3};
   BlockCholesky incomplete(BlockCholesky::Fill::None);
   incomplete.analyze(A, sizes);

@@ -41,7 +41,7 @@ constexpr double kAutoRedecideChange = 0.25;
 /// kAutoBlockCholeskyFlops, or else CHOLMOD does and is kept at most kAutoCholmodFlops for the
 /// factorisation (soft nodes' 3×3 blocks fill like a 3-D mesh,
 /// which CHOLMOD's supernodes and PETSc handle better); otherwise "block_cg" when every DOF
-/// block is an affine body's (its 12×12 IC(0) in parallel, solve phase 1.7–2× cheaper than
+/// block is an affine body's (its 12×12 IC(0) in parallel, solve phase 1.5–1.9× cheaper than
 /// PETSc's on `bricks_900` at one thread, docs/benchmarks.md) and PETSc
 /// (default_petsc_method()) when there are soft nodes. The decision is
 /// revisited at an analyze_pattern() whose number of stored entries differs by more than

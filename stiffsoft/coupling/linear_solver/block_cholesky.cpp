@@ -7,8 +7,8 @@
 #include <Eigen/OrderingMethods>
 #include <algorithm>
 #include <atomic>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 #include <stdexcept>
 #include <string>

@@ -63,6 +63,11 @@ class BlockCholesky {
   /// y = (H + shift·I) x with the last successfully factorised H and shift, block by block;
   /// for residuals without a copy of H. Valid until the next analyze() or failed factorize().
   Eigen::VectorXd multiply(const Eigen::VectorXd& x) const;
+  /// H with the last successfully factorised numbers (a view into this factorisation's copy)
+  /// and its shift: what multiply() multiplies by, for an exact factor to start from.
+  const BlockUpper& factorised() const { return m_factorised; }
+  /// The shift of the last successful factorisation.
+  double shift() const { return m_shift; }
   /// Floating-point operations of one factorisation, from the symbolic analysis.
   double flops() const { return m_flops; }
   /// Scalar entries of L (its lower triangle, diagonal blocks' lower halves included).

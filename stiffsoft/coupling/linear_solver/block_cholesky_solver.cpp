@@ -3,6 +3,7 @@
 #include <chrono>
 #include <limits>
 #include <numeric>
+#include <string>
 
 #include <stiffsoft/coupling/linear_solver/block_sparse_pattern.hpp>
 #include <stiffsoft/coupling/linear_solver/conjugate_gradients.hpp>
@@ -69,7 +70,28 @@ Eigen::VectorXd BlockCholeskySolver::solve(const Eigen::VectorXd& b) {
   const auto factor_solve = [&](const Eigen::VectorXd& rhs) { return m_factor.solve(rhs); };
   Eigen::VectorXd p = m_krylov ? conjugate_gradients(multiply, factor_solve, b, m_eta, kBlockCgIterationCap, name(), m_report)
                                : refined_solve(multiply, b, factor_solve, name(), m_report);
+  if (m_krylov && !m_report.converged()) p = fallback_solve(b);
   m_report.solve_seconds = seconds_since(start);
+  return p;
+}
+
+Eigen::VectorXd BlockCholeskySolver::fallback_solve(const Eigen::VectorXd& b) {
+  const std::string failure = m_report.reason + " after " + std::to_string(m_report.iterations) + " iterations";
+  if (!m_fallback) m_fallback = std::make_unique<BlockCholesky>();
+  const int iterations = m_report.iterations;
+  m_fallback->analyze(m_factor.factorised());
+  Eigen::VectorXd p;
+  if (m_fallback->factorize(m_factor.factorised(), m_factor.shift())) {
+    p = refined_solve([&](const Eigen::VectorXd& x) { return m_fallback->multiply(x); }, b,
+                      [&](const Eigen::VectorXd& rhs) { return m_fallback->solve(rhs); }, "block_cholesky", m_report);
+  } else {
+    p = Eigen::VectorXd::Constant(b.size(), std::numeric_limits<double>::quiet_NaN());
+    m_report.status = LinearSolveStatus::Indefinite;
+    m_report.reason = "block_cholesky: a pivot block is not positive definite";
+  }
+  m_report.iterations = iterations;
+  m_report.fallback_used = true;
+  m_report.primary_failure = failure;
   return p;
 }
 

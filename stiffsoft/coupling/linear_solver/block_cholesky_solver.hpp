@@ -3,6 +3,7 @@
 /// interface: "block_cholesky", and what "auto" takes for piles of affine bodies.
 
 #include <Eigen/SparseCore>
+#include <memory>
 #include <vector>
 
 #include <stiffsoft/coupling/linear_solver/block_cholesky.hpp>
@@ -16,7 +17,9 @@ namespace stiffsoft {
 ///    takes one step of iterative refinement, its residual a block product;
 ///  - "block_cg" (Fill::None): conjugate gradients to the relative tolerance η
 ///    (set_relative_tolerance()), preconditioned by IC(0) over the blocks. An IC(0) that breaks
-///    down on a positive definite H is built again from H + α diag(H), α = 1e-3, 1e-2, … 1.
+///    down on a positive definite H is built again from H + α diag(H), α = 1e-3, 1e-2, … 1;
+///    a solve CG cannot finish (iteration cap, negative curvature) falls back to the exact
+///    factor of the same H (report.fallback_used), as the PETSc backend falls back to CHOLMOD.
 /// Either report gives the explicit relative residual ‖b − H p‖/‖b‖. Both are parallel over
 /// independent columns and give the same p bit for bit whatever the thread count.
 class BlockCholeskySolver final : public LinearSolver {
@@ -51,6 +54,7 @@ class BlockCholeskySolver final : public LinearSolver {
   double m_eta = 1e-8;
   std::vector<int> m_sizes;
   bool m_factorized = false;
+  std::unique_ptr<BlockCholesky> m_fallback;  // block_cg's exact factor, made when CG fails
 
   /// Runs factorize (a call of m_factor's) and fills the report.
   template <class Factorize>
@@ -59,6 +63,8 @@ class BlockCholeskySolver final : public LinearSolver {
   /// growing boost while it fails.
   template <class Factor>
   bool factorize_with_boost(Factor&& factor);
+  /// After CG failed on b (the report says why): p from the exact factor of the H CG was given.
+  Eigen::VectorXd fallback_solve(const Eigen::VectorXd& b);
 };
 
 /// Krylov iteration cap of one "block_cg" solve (as the PETSc backend's).
