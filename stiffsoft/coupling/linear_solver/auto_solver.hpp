@@ -43,7 +43,8 @@ constexpr double kAutoRedecideChange = 0.25;
 /// which CHOLMOD's supernodes and PETSc handle better); otherwise "block_cg" when every DOF
 /// block is an affine body's (its 12×12 IC(0) in parallel, solve phase 1.5–1.9× cheaper than
 /// PETSc's on `bricks_900` at one thread, docs/benchmarks.md) and PETSc
-/// (default_petsc_method()) when there are soft nodes. The decision is
+/// (default_petsc_method()) when there are soft nodes (there "block_cg" is the same
+/// preconditioner but 2.5–2.8× slower: docs/linear_solvers.md). The decision is
 /// revisited at an analyze_pattern() whose number of stored entries differs by more than
 /// kAutoRedecideChange from the last decision's.
 class AutoSolver final : public LinearSolver {
