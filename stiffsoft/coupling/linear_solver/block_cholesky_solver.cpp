@@ -68,7 +68,7 @@ Eigen::VectorXd BlockCholeskySolver::solve(const Eigen::VectorXd& b) {
   }
   const auto multiply = [&](const Eigen::VectorXd& x) { return m_factor.multiply(x); };
   const auto factor_solve = [&](const Eigen::VectorXd& rhs) { return m_factor.solve(rhs); };
-  Eigen::VectorXd p = m_krylov ? conjugate_gradients(multiply, factor_solve, b, m_eta, kBlockCgIterationCap, name(), m_report)
+  Eigen::VectorXd p = m_krylov ? conjugate_gradients(multiply, factor_solve, b, m_eta, kKrylovIterationCap, name(), m_report)
                                : refined_solve(multiply, b, factor_solve, name(), m_report);
   if (m_krylov && !m_report.converged()) p = fallback_solve(b);
   m_report.solve_seconds = seconds_since(start);

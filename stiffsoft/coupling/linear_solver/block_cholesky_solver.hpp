@@ -51,7 +51,7 @@ class BlockCholeskySolver final : public LinearSolver {
  private:
   BlockCholesky m_factor;
   bool m_krylov;
-  double m_eta = 1e-8;
+  double m_eta = kKrylovRelativeTolerance;
   std::vector<int> m_sizes;
   bool m_factorized = false;
   std::unique_ptr<BlockCholesky> m_fallback;  // block_cg's exact factor, made when CG fails
@@ -66,8 +66,5 @@ class BlockCholeskySolver final : public LinearSolver {
   /// After CG failed on b (the report says why): p from the exact factor of the H CG was given.
   Eigen::VectorXd fallback_solve(const Eigen::VectorXd& b);
 };
-
-/// Krylov iteration cap of one "block_cg" solve (as the PETSc backend's).
-inline constexpr int kBlockCgIterationCap = 1000;
 
 }  // namespace stiffsoft

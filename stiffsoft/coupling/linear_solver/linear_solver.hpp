@@ -14,6 +14,12 @@
 
 namespace stiffsoft {
 
+/// The Krylov backends' (PETSc's and "block_cg") relative tolerance η of a solve until
+/// set_relative_tolerance() sets it.
+inline constexpr double kKrylovRelativeTolerance = 1e-8;
+/// The Krylov backends' iteration cap of one solve.
+inline constexpr int kKrylovIterationCap = 1000;
+
 /// Solves H p = b for symmetric positive (semi-)definite H given by its upper triangle
 /// (compressed sparse column, n × n, n a multiple of 3).
 ///

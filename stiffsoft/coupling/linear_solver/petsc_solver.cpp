@@ -142,7 +142,7 @@ struct PetscSolver::Impl {
   bool shell = false;              // the PC in use is our block Jacobi
   std::string preconditioner;      // the PC in use, in our names ("vpbjacobi" for the shell)
   bool rtol_from_options = false;  // -ksp_rtol given: it wins over set_relative_tolerance()
-  double rtol = 1e-8;
+  double rtol = kKrylovRelativeTolerance;
   int preallocations = 0;
   // Fallback (CHOLMOD on the whole system, on every rank).
   Eigen::SparseMatrix<double> upper;  // copy of the last factorised H, kept only with a fallback

@@ -25,8 +25,8 @@ struct PetscSolverSettings {
   std::string ksp_type = "cg";  ///< Krylov method: "cg", "minres" or "gmres"
   std::string pc_type = "icc";  ///< preconditioner: "none", "jacobi", "pbjacobi" (3×3 blocks),
                                 ///< "vpbjacobi" (DOF blocks: 12×12 / 3×3), "icc", "gamg", "hypre"
-  double relative_tolerance = 1e-8;  ///< η: stop when ‖b − H p‖ ≤ η ‖b‖ (set_relative_tolerance() changes it)
-  int max_iterations = 1000;  ///< Krylov iteration cap per solve
+  double relative_tolerance = kKrylovRelativeTolerance;  ///< η: stop when ‖b − H p‖ ≤ η ‖b‖ (set_relative_tolerance() changes it)
+  int max_iterations = kKrylovIterationCap;  ///< Krylov iteration cap per solve
   std::string matrix_type;    ///< "baij", "sbaij" or "aij" (all with block size 3); empty: chosen
                               ///< per PC (see default_matrix_type()); -mat_type overrides
   KrylovFallback fallback = KrylovFallback::Cholmod;  ///< on a Krylov failure
