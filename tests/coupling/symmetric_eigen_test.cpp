@@ -1,6 +1,7 @@
 /// symmetric_eigen (symmetric_eigen.hpp): the decomposition rebuilds the matrix with
 /// orthonormal vectors and Eigen's eigenvalues, for random, repeated-eigenvalue, diagonal,
-/// rank-one, zero and badly scaled matrices of the sizes the barrier's projection uses.
+/// rank-one, zero and badly scaled matrices of the sizes the barrier's projections use (2 to 5
+/// in the distance span, 3, 6 and 9 in the mollified edge pairs' translation complement).
 
 #include <gtest/gtest.h>
 
@@ -67,6 +68,8 @@ TEST(SymmetricEigen, RebuildsTheMatrixWithOrthonormalVectorsAndEigensEigenvalues
   expect_decompositions<3>(2);
   expect_decompositions<4>(3);
   expect_decompositions<5>(4);
+  expect_decompositions<6>(6);
+  expect_decompositions<9>(9);
 }
 
 TEST(SymmetricEigen, ReadsOnlyTheLowerTriangle) {
