@@ -5,7 +5,8 @@
 /// 5×5 matrices of the barrier's projection (projected_barrier_hessian.cpp) and the 3×3 to
 /// 9×9 ones of the mollified edge pairs' (psd_projection.cpp) the compiler unrolls it, where
 /// Eigen's SelfAdjointEigenSolver runs its general blocked code: 0.89 µs against 1.32 µs for a
-/// 5×5 (docs/benchmarks.md, session 25), 3.9 µs against 5.8 µs for a 9×9 (session 35).
+/// 5×5 (docs/benchmarks.md, session 25), 3.8 µs against 6.0 µs for a 9×9 (session 35;
+/// bench/symmetric_eigen_bench.cpp).
 
 #include <Eigen/Core>
 #include <algorithm>
