@@ -68,9 +68,10 @@ def main():
     print("|" + "---|" * len(header))
     for text in args.runs:
         runs, first, last = parse_run(text)
-        summaries, contacts = [], []
+        summaries, contacts, first_rows = [], [], None
         for run in runs:
             rows = read_rows(run)
+            first_rows = first_rows or rows
             s = summarise(rows, first, last)
             if s is None:
                 sys.exit(f"iteration_scaling: {run}: no steps in [{first}, {last}]")
@@ -79,7 +80,7 @@ def main():
         bodies, contact = body_count(runs[0]), statistics.median(contacts)
         ms = statistics.median(s["ms_per_iteration"] for s in summaries)
         points.append((os.path.basename(os.path.normpath(runs[0])), bodies, contact, ms))
-        steps = [int(float(r["step"])) for r in read_rows(runs[0]) if first <= int(float(r["step"])) <= last]
+        steps = [int(float(r["step"])) for r in first_rows if first <= int(float(r["step"])) <= last]
         phases = [statistics.median(s["phases_ms"][p] for s in summaries) for p in PHASES]
         cells = [points[-1][0], f"{bodies:,}", f"{min(steps)}–{max(steps)}", f"{contact:,.0f}", f"{ms:.2f}"]
         cells += [f"{v:.2f}" for v in phases]

@@ -1,7 +1,6 @@
 #include <stiffsoft/coupling/contact/projected_barrier_hessian.hpp>
 #include <stiffsoft/coupling/contact/symmetric_eigen.hpp>
 
-#include <Eigen/Eigenvalues>
 #include <cmath>
 
 namespace stiffsoft::contact {
@@ -36,12 +35,7 @@ LowRankHessian project_in_distance_span(const DistanceCurvature& k, double db, d
     }
     S.noalias() -= (2.0 * db) * Y.lazyProduct(k.gram_pinv.template topLeftCorner<M, M>()).lazyProduct(Y.transpose());
   }
-  SymmetricEigen<n> es = symmetric_eigen<n>(S);
-  if (!es.converged) {  // a safety net: Eigen's solver
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, n, n>> eigen(S);
-    es.values = eigen.eigenvalues();
-    es.vectors = eigen.eigenvectors();
-  }
+  const SymmetricEigen<n> es = checked_symmetric_eigen<n>(S);
   // H₊ = Σ_m λ_m⁺ g_m g_mᵀ, g_m = ĉ ⊗ v_m,head + (q v_m,tail) ⊗ r̂.
   LowRankHessian H;
   for (int m = 0; m < n; ++m) {

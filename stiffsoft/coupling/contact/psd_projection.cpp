@@ -40,14 +40,8 @@ void project_in_translation_complement(Eigen::Matrix<double, 12, 12>& H) {
   const Eigen::Matrix<double, d, r> HQ = H.template topLeftCorner<d, d>().lazyProduct(Q);
   const Eigen::Matrix<double, r, r> R = Q.transpose().lazyProduct(HQ);
   // The plain-loop decomposition (symmetric_eigen.hpp), unrolled for these sizes: 1.6× faster
-  // than Eigen's solver on 9×9 matrices (docs/benchmarks.md, session 35), which stays as the
-  // safety net.
-  SymmetricEigen<r> es = symmetric_eigen<r>(R);
-  if (!es.converged) {
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, r, r>> eigen(R);
-    es.values = eigen.eigenvalues();
-    es.vectors = eigen.eigenvectors();
-  }
+  // than Eigen's solver on 9×9 matrices (docs/benchmarks.md, session 35).
+  const SymmetricEigen<r> es = checked_symmetric_eigen<r>(R);
   const auto& lambda = es.values;
   if (lambda.minCoeff() >= 0.0) return;
   const Eigen::Matrix<double, d, r> QV = Q.lazyProduct(es.vectors);

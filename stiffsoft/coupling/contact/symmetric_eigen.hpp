@@ -143,4 +143,11 @@ SymmetricEigen<N> symmetric_eigen(const Eigen::Matrix<double, N, N>& A) {
   return out;
 }
 
+/// symmetric_eigen(A), or Eigen's SelfAdjointEigenSolver where its QL iteration does not
+/// settle: always converged. Defined in symmetric_eigen.cpp (Eigen's fixed-size solver costs
+/// every file that instantiates it inline about half a minute of compile time) for N = 3, 4, 5
+/// (the barrier's projection in the distance span) and 6, 9 (the mollified edge pairs').
+template <int N>
+SymmetricEigen<N> checked_symmetric_eigen(const Eigen::Matrix<double, N, N>& A);
+
 }  // namespace stiffsoft::contact

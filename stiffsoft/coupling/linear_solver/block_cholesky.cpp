@@ -315,6 +315,7 @@ void BlockCholesky::analyze(const BlockUpper& H) {
   }
   m_factorised = BlockUpper{H.offsets, H.column_starts, H.rows, {}};
   for (std::size_t k = 0; k + 1 < m_input_at.size(); ++k) m_factorised.values.push_back(m_input.data() + m_input_at[k]);
+  m_factorised_rows = block_rows(m_factorised);
   m_kept = false;
   const bool uniform = std::all_of(sizes.begin(), sizes.end(), [&](int s) { return s == sizes.front(); });
   m_uniform = uniform && nb ? sizes.front() : 0;
@@ -459,7 +460,7 @@ void BlockCholesky::solve_in_place(Eigen::VectorXd& x) const {
 
 Eigen::VectorXd BlockCholesky::multiply(const Eigen::VectorXd& x) const {
   if (!m_kept) throw std::logic_error("BlockCholesky::multiply without a factor");
-  return m_factorised.multiply(x, m_shift);
+  return m_factorised.multiply(x, m_shift, m_factorised_rows);
 }
 
 Eigen::VectorXd BlockCholesky::solve(const Eigen::VectorXd& b) const {

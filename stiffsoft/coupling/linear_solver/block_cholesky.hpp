@@ -134,6 +134,7 @@ class BlockCholesky {
   std::vector<std::size_t> m_input_at;           // per stored block of H: where m_input holds it
   std::vector<double> m_input;                   // H's blocks at the last successful factorisation
   BlockUpper m_factorised;                       // H's pattern, its values in m_input
+  BlockRows m_factorised_rows;                   // its blocks by row, for multiply()
   double m_shift = 0, m_boost = 0;               // … and the shift and boost factorised with them
   bool m_kept = false;                           // whether m_input, m_shift and m_boost hold a complete factor's H
   GatheredBlocks m_gathered;                     // the blocks of the last CSC given

@@ -92,19 +92,28 @@ Eigen::SparseMatrix<double> BlockUpper::compressed(double shift) const {
   return H;
 }
 
+BlockRows block_rows(const BlockUpper& H) {
+  const int n = H.num_blocks();
+  BlockRows r;
+  r.starts.assign(std::size_t(n) + 1, 0);
+  for (int j = 0; j < n; ++j)
+    for (int k = H.column_starts[j]; k < H.column_starts[j + 1]; ++k)
+      if (H.rows[k] != j) ++r.starts[std::size_t(H.rows[k]) + 1];
+  for (int i = 0; i < n; ++i) r.starts[std::size_t(i) + 1] += r.starts[std::size_t(i)];
+  r.blocks.resize(std::size_t(r.starts.back()));
+  std::vector<int> next(r.starts.begin(), r.starts.end() - 1);
+  for (int j = 0; j < n; ++j)
+    for (int k = H.column_starts[j]; k < H.column_starts[j + 1]; ++k)
+      if (H.rows[k] != j) r.blocks[std::size_t(next[std::size_t(H.rows[k])]++)] = {k, j};
+  return r;
+}
+
 Eigen::VectorXd BlockUpper::multiply(const Eigen::VectorXd& x, double shift) const {
+  return multiply(x, shift, block_rows(*this));
+}
+
+Eigen::VectorXd BlockUpper::multiply(const Eigen::VectorXd& x, double shift, const BlockRows& by_row) const {
   const int n = num_blocks();
-  // Each block row's off-diagonal blocks (k, column), by ascending column.
-  std::vector<int> row_starts(std::size_t(n) + 1, 0);
-  std::vector<std::array<int, 2>> by_row(rows.size());
-  for (int j = 0; j < n; ++j)
-    for (int k = column_starts[j]; k < column_starts[j + 1]; ++k)
-      if (rows[k] != j) ++row_starts[std::size_t(rows[k]) + 1];
-  for (int i = 0; i < n; ++i) row_starts[std::size_t(i) + 1] += row_starts[std::size_t(i)];
-  std::vector<int> next(row_starts.begin(), row_starts.end() - 1);
-  for (int j = 0; j < n; ++j)
-    for (int k = column_starts[j]; k < column_starts[j + 1]; ++k)
-      if (rows[k] != j) by_row[std::size_t(next[std::size_t(rows[k])]++)] = {k, j};
   const auto add = [&](int k, int j, Part target, Eigen::VectorXd& y) {
     const int i = rows[k];
     if (size(i) == 12 && size(j) == 12)
@@ -120,8 +129,8 @@ Eigen::VectorXd BlockUpper::multiply(const Eigen::VectorXd& x, double shift) con
   tbb::parallel_for(tbb::blocked_range<int>(0, n, 32), [&](const tbb::blocked_range<int>& r) {
     for (int m = r.begin(); m < r.end(); ++m) {
       for (int k = column_starts[m]; k < column_starts[m + 1]; ++k) add(k, m, Part::Column, y);
-      for (int e = row_starts[std::size_t(m)]; e < row_starts[std::size_t(m) + 1]; ++e)
-        add(by_row[std::size_t(e)][0], by_row[std::size_t(e)][1], Part::Row, y);
+      for (int e = by_row.starts[std::size_t(m)]; e < by_row.starts[std::size_t(m) + 1]; ++e)
+        add(by_row.blocks[std::size_t(e)][0], by_row.blocks[std::size_t(e)][1], Part::Row, y);
     }
   });
   return y;

@@ -5,9 +5,18 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <array>
 #include <vector>
 
 namespace stiffsoft {
+
+/// The stored off-diagonal blocks of an upper triangle by block row: what a product with the
+/// whole symmetric matrix reads the lower triangle from. It depends on the pattern only
+/// (block_rows()), so whoever multiplies by one pattern many times keeps it.
+struct BlockRows {
+  std::vector<int> starts{0};              ///< block row i's entries are [starts[i], starts[i + 1])
+  std::vector<std::array<int, 2>> blocks;  ///< (stored block k, its block column), by ascending column
+};
 
 /// H over DOF blocks (block b holds DOFs [offsets[b], offsets[b + 1])) as its stored blocks
 /// (i, j), i ≤ j, column by column: column j's are k ∈ [column_starts[j], column_starts[j + 1])
@@ -38,7 +47,12 @@ struct BlockUpper {
   /// numbers first (so that it matches compressed(shift)'s product to the last bit). Blocks of
   /// y are summed in parallel, each in a fixed order: the result does not depend on the threads.
   Eigen::VectorXd multiply(const Eigen::VectorXd& x, double shift = 0) const;
+  /// multiply() with this pattern's block_rows() given, the same y bit for bit.
+  Eigen::VectorXd multiply(const Eigen::VectorXd& x, double shift, const BlockRows& by_row) const;
 };
+
+/// The stored off-diagonal blocks of H by block row.
+BlockRows block_rows(const BlockUpper& H);
 
 /// Whether `a` and `b` store the same blocks over the same DOF blocks (their numbers aside).
 inline bool same_blocks(const BlockUpper& a, const BlockUpper& b) {
