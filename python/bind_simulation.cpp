@@ -223,6 +223,10 @@ void bind_simulation(py::module_& m) {
       .def_readonly("friction_relags", &StepStats::friction_relags, "times friction was lagged again within the step")
       .def_readonly("friction_lag_error", &StepStats::friction_lag_error,
                     "largest change of a body's velocity that friction lagged at the result would make (m/s)")
+      .def_readonly("sticking", &StepStats::sticking, "friction stencils whose slide over the step is inside the stick zone eps_v h")
+      .def_readonly("sliding", &StepStats::sliding, "friction stencils whose slide over the step is outside it")
+      .def_readonly("stick_slip_flips", &StepStats::stick_slip_flips,
+                    "changes of a friction stencil between sticking and sliding from one Newton iterate to the next")
       .def_readonly("kappa", &StepStats::kappa, "barrier stiffness at the end of the step")
       .def_readonly("joint_error", &StepStats::joint_error, "largest violation of the joints' equalities (m)")
       .def_readonly("joint_force", &StepStats::joint_force, "largest joint force (N)")

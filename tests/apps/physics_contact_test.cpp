@@ -263,3 +263,26 @@ TEST(FrictionIterations, TheLagErrorOfALandingIsMuTimesItsImpulsePerMass) {
   }
   FAIL() << "the box never landed";
 }
+
+// stats.csv's stick/slip columns: once landed, every friction stencil of the μ = 0.49 block
+// slides and every one of the μ = 0.5 block sticks, with no change between Newton iterates;
+// the landing, which turns the block's slide into the slope's motion, changes some.
+TEST(StickSlip, TheSlidingBlockSlidesAndTheStickingOneSticks) {
+  for (const bool slides : {true, false}) {
+    SceneSimulation run = make_simulation(std::string(STIFFSOFT_SOURCE_DIR "/scenes/") +
+                                          (slides ? "incline_slide.json" : "incline_stick.json"));
+    int landing_flips = 0;
+    for (int k = 1; k <= 60; ++k) {
+      const StepStats s = run.simulation.step();
+      if (k <= 10) {
+        landing_flips += s.stick_slip_flips;
+        continue;
+      }
+      ASSERT_GT(s.contacts, 0) << "step " << k;
+      EXPECT_EQ(slides ? s.sliding : s.sticking, s.contacts) << "step " << k;
+      EXPECT_EQ(slides ? s.sticking : s.sliding, 0) << "step " << k;
+      EXPECT_EQ(s.stick_slip_flips, 0) << "step " << k;
+    }
+    EXPECT_GT(landing_flips, 0) << (slides ? "slide" : "stick");
+  }
+}

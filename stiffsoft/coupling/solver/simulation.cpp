@@ -169,6 +169,12 @@ StepStats Simulation::step() {
   stats.contacts = int(m_barrier.constraints().size());
   stats.smallest_distance = m_barrier.min_active_distance({m_q, x});
   stats.kappa = m_barrier.kappa();
+  if (m_friction) {
+    const FrictionTerm::StickSlip stick_slip = m_friction->stick_slip({m_q, x});
+    stats.sticking = stick_slip.sticking;
+    stats.sliding = stick_slip.sliding;
+    stats.stick_slip_flips = m_friction->stick_slip_flips();
+  }
   for (double v : joint_violations(m_constraints, m_q, int(m_model.joints.size())))
     stats.joint_error = std::max(stats.joint_error, v);
   if (!m_model.joints.empty()) {

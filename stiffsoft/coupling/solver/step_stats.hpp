@@ -30,6 +30,11 @@ struct StepStats {
   /// mean velocity that friction lagged there would make against the lag the step was solved
   /// with (m/s; Simulation::friction_lag_error); 0 without friction.
   double friction_lag_error = 0;
+  int sticking = 0;              ///< friction stencils (λ > 0) whose slide over the step is inside the stick zone ε_v h
+  int sliding = 0;               ///< friction stencils whose slide over the step is outside it
+  /// Changes of a friction stencil between sticking and sliding from one accepted Newton
+  /// iterate to the next, summed over the stencils and the step's iterations
+  int stick_slip_flips = 0;
   double kappa = 0;              ///< barrier stiffness at the end of the step
   double joint_error = 0;        ///< largest violation of the joints' linear equalities at the end of the step (m)
   double joint_force = 0;        ///< largest joint force magnitude at the end of the step (N), see Simulation::joint_forces()

@@ -23,6 +23,7 @@ FrictionTerm::FrictionTerm(const Model& model, double mu, double epsv_h)
 
 void FrictionTerm::lag(const Configuration& c, const BarrierTerm& barrier) {
   m_x_lag = c.x;
+  m_flips = 0;
   relag(c, barrier);
 }
 
@@ -33,6 +34,7 @@ void FrictionTerm::relag(const Configuration& c, const BarrierTerm& barrier) {
   m_vertices.resize(n);
   m_lagged.resize(n);
   m_majorized.assign(n, 0);
+  m_state.assign(n, 0);
   for_each_item(n, kRelagGrain, [&](std::size_t k) {
     const ContactConstraint& constraint = constraints[k];
     m_stencils[k] = contact::make_friction_stencil(constraint.stencil, gather(c.x, constraint.vertices), barrier.dhat(),
@@ -96,6 +98,38 @@ double FrictionTerm::stick_zone_step(const Configuration& c, const Eigen::Matrix
         return worst;
       },
       [](double a, double b) { return std::max(a, b); });
+}
+
+char FrictionTerm::stick_slip_state(const Configuration& c, size_t k) const {
+  const contact::FrictionStencil& f = m_stencils[k];
+  if (!(f.normal_force > 0)) return 0;
+  return (f.T * displacement(c, k)).norm() < m_epsv_h ? 1 : 2;
+}
+
+FrictionTerm::StickSlip FrictionTerm::stick_slip(const Configuration& c) const {
+  StickSlip counts;
+  for (size_t k = 0; k < m_stencils.size(); ++k) {
+    const char state = stick_slip_state(c, k);
+    counts.sticking += state == 1;
+    counts.sliding += state == 2;
+  }
+  return counts;
+}
+
+bool FrictionTerm::end_iteration(const Configuration& c) {
+  // A sum of integers: the same whatever the thread count. Each stencil's state is its own.
+  m_flips += tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, m_stencils.size(), 256), 0,
+      [&](const tbb::blocked_range<size_t>& r, int flips) {
+        for (size_t k = r.begin(); k < r.end(); ++k) {
+          const char state = stick_slip_state(c, k);
+          flips += m_state[k] != 0 && state != 0 && state != m_state[k];
+          m_state[k] = state;
+        }
+        return flips;
+      },
+      [](int a, int b) { return a + b; });
+  return false;
 }
 
 double FrictionTerm::value(const Configuration& c) const {

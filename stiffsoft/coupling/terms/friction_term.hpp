@@ -52,8 +52,25 @@ class FrictionTerm final : public EnergyTerm {
   /// Number of lagged friction stencils.
   size_t size() const { return m_stencils.size(); }
 
+  /// How many stencils with λ > 0 stick (‖T u‖ < ε_v h) and how many slide at a configuration.
+  struct StickSlip {
+    int sticking = 0;  ///< stencils whose slide since xⁿ is inside the stick zone
+    int sliding = 0;   ///< stencils whose slide is outside it
+  };
+  /// The stick/slip counts at c.
+  StickSlip stick_slip(const Configuration& c) const;
+  /// See EnergyTerm::end_iteration: counts the stencils that moved between sticking and
+  /// sliding since the previous accepted iterate (a diagnostic; E is unchanged, so false).
+  bool end_iteration(const Configuration& c) override;
+  /// Changes between sticking and sliding from one accepted iterate to the next, summed over
+  /// the stencils since the last lag() (relag() keeps counting, from the new stencils' first
+  /// iterate on).
+  int stick_slip_flips() const { return m_flips; }
+
  private:
   contact::Vector12d displacement(const Configuration& c, size_t k) const;
+  /// 1 where stencil k sticks at c, 2 where it slides, 0 without normal force.
+  char stick_slip_state(const Configuration& c, size_t k) const;
   const Model& m_model;
   double m_mu, m_epsv_h;
   Eigen::MatrixX3d m_x_lag;
@@ -63,6 +80,8 @@ class FrictionTerm final : public EnergyTerm {
   std::vector<StencilJacobian> m_jacobians;     ///< each stencil's map from the DOFs
   /// Whether each stencil has been switched to its majorizer (revise_hessian; cleared by relag)
   mutable std::vector<char> m_majorized;
+  std::vector<char> m_state;  ///< each stencil's stick_slip_state at the last accepted iterate (0: none yet)
+  int m_flips = 0;            ///< see stick_slip_flips
 };
 
 }  // namespace stiffsoft
