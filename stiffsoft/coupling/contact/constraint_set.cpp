@@ -105,21 +105,24 @@ std::vector<ContactConstraint> build_constraints(const Model& model, const Eigen
       local.local().push_back(canonical(c.kind, pick(ids, c), eps_x, false));
   });
 
+  std::size_t count = 0;
+  for (const auto& l : local) count += l.size();
   std::vector<ContactConstraint> all;
+  all.reserve(count);
   for (const auto& l : local) all.insert(all.end(), l.begin(), l.end());
   // Constraints with equal keys differ only in their weights, integer multiplicities summed
   // exactly below: the merged list is the same whatever the sort's order among them, and so
-  // whatever the thread count.
+  // whatever the thread count. Merged in place.
   tbb::parallel_sort(all.begin(), all.end(), less);
-  std::vector<ContactConstraint> merged;
-  for (const ContactConstraint& c : all) {
-    if (!merged.empty() && !less(merged.back(), c)) {
-      merged.back().weight += c.weight;
-      continue;
-    }
-    merged.push_back(c);
+  std::size_t merged = 0;
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    if (merged > 0 && !less(all[merged - 1], all[k]))
+      all[merged - 1].weight += all[k].weight;
+    else
+      all[merged++] = all[k];
   }
-  return merged;
+  all.resize(merged);
+  return all;
 }
 
 double smallest_distance(const Model& model, const Eigen::MatrixX3d& x, const Candidates& candidates) {

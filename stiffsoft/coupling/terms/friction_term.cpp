@@ -35,15 +35,15 @@ void FrictionTerm::relag(const Configuration& c, const BarrierTerm& barrier) {
   m_lagged.resize(n);
   m_majorized.assign(n, 0);
   m_state.assign(n, 0);
+  m_jacobians.resize(n, StencilJacobian(m_model, {-1, -1, -1, -1}));  // every one set below
   for_each_item(n, kRelagGrain, [&](std::size_t k) {
     const ContactConstraint& constraint = constraints[k];
     m_stencils[k] = contact::make_friction_stencil(constraint.stencil, gather(c.x, constraint.vertices), barrier.dhat(),
                                                    barrier.kappa() * constraint.weight);
     m_vertices[k] = constraint.vertices;
     m_lagged[k] = gather(m_x_lag, constraint.vertices);
+    m_jacobians[k] = StencilJacobian(m_model, constraint.vertices);
   });
-  m_jacobians.clear();
-  for (const ContactConstraint& constraint : constraints) m_jacobians.emplace_back(m_model, constraint.vertices);
 }
 
 namespace {
@@ -107,17 +107,26 @@ char FrictionTerm::stick_slip_state(const Configuration& c, size_t k) const {
 }
 
 FrictionTerm::StickSlip FrictionTerm::stick_slip(const Configuration& c) const {
-  StickSlip counts;
-  for (size_t k = 0; k < m_stencils.size(); ++k) {
-    const char state = stick_slip_state(c, k);
-    counts.sticking += state == 1;
-    counts.sliding += state == 2;
-  }
-  return counts;
+  // Sums of integers: the same whatever the thread count.
+  return tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, m_stencils.size(), 256), StickSlip{},
+      [&](const tbb::blocked_range<size_t>& r, StickSlip counts) {
+        for (size_t k = r.begin(); k < r.end(); ++k) {
+          const char state = stick_slip_state(c, k);
+          counts.sticking += state == 1;
+          counts.sliding += state == 2;
+        }
+        return counts;
+      },
+      [](StickSlip a, const StickSlip& b) {
+        a.sticking += b.sticking;
+        a.sliding += b.sliding;
+        return a;
+      });
 }
 
 bool FrictionTerm::end_iteration(const Configuration& c) {
-  // A sum of integers: the same whatever the thread count. Each stencil's state is its own.
+  // Each stencil's state is its own, and the count a sum of integers.
   m_flips += tbb::parallel_reduce(
       tbb::blocked_range<size_t>(0, m_stencils.size(), 256), 0,
       [&](const tbb::blocked_range<size_t>& r, int flips) {
