@@ -266,7 +266,7 @@ TEST(FrictionIterations, TheLagErrorOfALandingIsMuTimesItsImpulsePerMass) {
 
 // stats.csv's stick/slip columns: once landed, every friction stencil of the μ = 0.49 block
 // slides and every one of the μ = 0.5 block sticks, with no change between Newton iterates;
-// the landing, which turns the block's slide into the slope's motion, changes some.
+// in the landing's steps some stencils change between the two within a step.
 TEST(StickSlip, TheSlidingBlockSlidesAndTheStickingOneSticks) {
   for (const bool slides : {true, false}) {
     SceneSimulation run = make_simulation(std::string(STIFFSOFT_SOURCE_DIR "/scenes/") +

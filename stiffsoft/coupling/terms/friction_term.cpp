@@ -34,7 +34,7 @@ void FrictionTerm::relag(const Configuration& c, const BarrierTerm& barrier) {
   m_vertices.resize(n);
   m_lagged.resize(n);
   m_majorized.assign(n, 0);
-  m_state.assign(n, 0);
+  m_slip.assign(n, Slip::None);
   m_jacobians.resize(n, StencilJacobian(m_model, {-1, -1, -1, -1}));  // every one set below
   for_each_item(n, kRelagGrain, [&](std::size_t k) {
     const ContactConstraint& constraint = constraints[k];
@@ -100,10 +100,10 @@ double FrictionTerm::stick_zone_step(const Configuration& c, const Eigen::Matrix
       [](double a, double b) { return std::max(a, b); });
 }
 
-char FrictionTerm::stick_slip_state(const Configuration& c, size_t k) const {
+FrictionTerm::Slip FrictionTerm::slip(const Configuration& c, size_t k) const {
   const contact::FrictionStencil& f = m_stencils[k];
-  if (!(f.normal_force > 0)) return 0;
-  return (f.T * displacement(c, k)).norm() < m_epsv_h ? 1 : 2;
+  if (!(f.normal_force > 0)) return Slip::None;
+  return (f.T * displacement(c, k)).norm() < m_epsv_h ? Slip::Sticking : Slip::Sliding;
 }
 
 FrictionTerm::StickSlip FrictionTerm::stick_slip(const Configuration& c) const {
@@ -112,9 +112,9 @@ FrictionTerm::StickSlip FrictionTerm::stick_slip(const Configuration& c) const {
       tbb::blocked_range<size_t>(0, m_stencils.size(), 256), StickSlip{},
       [&](const tbb::blocked_range<size_t>& r, StickSlip counts) {
         for (size_t k = r.begin(); k < r.end(); ++k) {
-          const char state = stick_slip_state(c, k);
-          counts.sticking += state == 1;
-          counts.sliding += state == 2;
+          const Slip state = slip(c, k);
+          counts.sticking += state == Slip::Sticking;
+          counts.sliding += state == Slip::Sliding;
         }
         return counts;
       },
@@ -131,9 +131,9 @@ bool FrictionTerm::end_iteration(const Configuration& c) {
       tbb::blocked_range<size_t>(0, m_stencils.size(), 256), 0,
       [&](const tbb::blocked_range<size_t>& r, int flips) {
         for (size_t k = r.begin(); k < r.end(); ++k) {
-          const char state = stick_slip_state(c, k);
-          flips += m_state[k] != 0 && state != 0 && state != m_state[k];
-          m_state[k] = state;
+          const Slip state = slip(c, k);
+          flips += m_slip[k] != Slip::None && state != Slip::None && state != m_slip[k];
+          m_slip[k] = state;
         }
         return flips;
       },

@@ -69,8 +69,10 @@ class FrictionTerm final : public EnergyTerm {
 
  private:
   contact::Vector12d displacement(const Configuration& c, size_t k) const;
-  /// 1 where stencil k sticks at c, 2 where it slides, 0 without normal force.
-  char stick_slip_state(const Configuration& c, size_t k) const;
+  /// Whether a stencil sticks or slides at a configuration (None: no normal force).
+  enum class Slip : char { None, Sticking, Sliding };
+  /// Stencil k's Slip at c.
+  Slip slip(const Configuration& c, size_t k) const;
   const Model& m_model;
   double m_mu, m_epsv_h;
   Eigen::MatrixX3d m_x_lag;
@@ -80,7 +82,7 @@ class FrictionTerm final : public EnergyTerm {
   std::vector<StencilJacobian> m_jacobians;     ///< each stencil's map from the DOFs
   /// Whether each stencil has been switched to its majorizer (revise_hessian; cleared by relag)
   mutable std::vector<char> m_majorized;
-  std::vector<char> m_state;  ///< each stencil's stick_slip_state at the last accepted iterate (0: none yet)
+  std::vector<Slip> m_slip;  ///< each stencil's Slip at the last accepted iterate (None before the first)
   int m_flips = 0;            ///< see stick_slip_flips
 };
 
