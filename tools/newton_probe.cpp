@@ -35,8 +35,9 @@
 #include <stiffsoft/coupling/contact/barrier_potential.hpp>
 #include <stiffsoft/coupling/model/stencil_jacobian.hpp>
 #include <stiffsoft/coupling/terms/barrier_term.hpp>
-#include <stiffsoft/io/checkpoint.hpp>
 #include <stiffsoft/scene/make_simulation.hpp>
+
+#include "resume_run.hpp"
 
 using namespace stiffsoft;
 
@@ -282,12 +283,7 @@ int main(int argc, char** argv) {
   try {
     SceneSimulation run = make_simulation(scene_file);
     Simulation& sim = run.simulation;
-    if (!run_dir.empty()) {
-      const Checkpoint checkpoint = read_checkpoint(std::filesystem::path(run_dir) / "checkpoint.bin");
-      if (checkpoint.scene_fingerprint != scene_fingerprint(run.scene))
-        throw ResumeError(run_dir + "/checkpoint.bin: written for another version of " + scene_file);
-      sim.restore(checkpoint.state);
-    }
+    if (!run_dir.empty()) tools::resume_run(run, scene_file, run_dir);
     const double dhat = sim.settings().dhat, h = sim.settings().h;
     std::mt19937 rng(seed);
     std::vector<Row> rows;

@@ -19,7 +19,6 @@
 
 #include <array>
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -27,8 +26,9 @@
 #include <stiffsoft/coupling/contact/squared_distance.hpp>
 #include <stiffsoft/coupling/terms/barrier_term.hpp>
 #include <stiffsoft/coupling/terms/friction_term.hpp>
-#include <stiffsoft/io/checkpoint.hpp>
 #include <stiffsoft/scene/make_simulation.hpp>
+
+#include "resume_run.hpp"
 
 using namespace stiffsoft;
 
@@ -111,12 +111,7 @@ int main(int argc, char** argv) {
   try {
     SceneSimulation run = make_simulation(scene_file);
     Simulation& sim = run.simulation;
-    if (!run_dir.empty()) {
-      const Checkpoint checkpoint = read_checkpoint(std::filesystem::path(run_dir) / "checkpoint.bin");
-      if (checkpoint.scene_fingerprint != scene_fingerprint(run.scene))
-        throw ResumeError(run_dir + "/checkpoint.bin: written for another version of " + scene_file);
-      sim.restore(checkpoint.state);
-    }
+    if (!run_dir.empty()) tools::resume_run(run, scene_file, run_dir);
     std::ofstream out(csv);
     out.precision(17);
     if (!out) throw std::runtime_error(csv + ": cannot be written");
