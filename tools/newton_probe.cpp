@@ -37,7 +37,7 @@
 #include <stiffsoft/coupling/terms/barrier_term.hpp>
 #include <stiffsoft/scene/make_simulation.hpp>
 
-#include "resume_run.hpp"
+#include "run_options.hpp"
 
 using namespace stiffsoft;
 
@@ -268,22 +268,19 @@ double median(std::vector<double> v) {
 
 int main(int argc, char** argv) {
   CLI::App app{"newton_probe: gradient, Hessian and model checks of every Newton direction at a run's states"};
-  std::string scene_file, run_dir, csv;
-  int steps = 10, threads = 1;
+  tools::RunOptions options;
+  std::string csv;
   unsigned seed = 1;
-  app.add_option("scene", scene_file, "scene file (JSON)")->required()->check(CLI::ExistingFile);
-  app.add_option("--resume", run_dir, "output folder of a run of that scene: start from its checkpoint.bin");
-  app.add_option("--steps", steps, "steps to take and probe")->check(CLI::PositiveNumber);
-  app.add_option("--threads", threads, "threads")->check(CLI::PositiveNumber);
+  options.add_to(app, "probe");
   app.add_option("--seed", seed, "seed of the random directions");
   app.add_option("--csv", csv, "write one row per probed direction here");
   CLI11_PARSE(app, argc, argv);
-  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(options.threads));
 
   try {
-    SceneSimulation run = make_simulation(scene_file);
+    SceneSimulation run = make_simulation(options.scene_file);
     Simulation& sim = run.simulation;
-    if (!run_dir.empty()) tools::resume_run(run, scene_file, run_dir);
+    tools::resume_run(run, options);
     const double dhat = sim.settings().dhat, h = sim.settings().h;
     std::mt19937 rng(seed);
     std::vector<Row> rows;
@@ -307,7 +304,7 @@ int main(int argc, char** argv) {
     });
     std::ofstream out;
     if (!csv.empty()) out.open(csv);
-    for (int k = 0; k < steps; ++k, ++step) {
+    for (int k = 0; k < options.steps; ++k, ++step) {
       const std::size_t first = rows.size();
       const StepStats stats = sim.step();
       for (std::size_t i = first; i < rows.size(); ++i) rows[i].contacts = stats.contacts;

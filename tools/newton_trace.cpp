@@ -28,7 +28,7 @@
 #include <stiffsoft/coupling/terms/friction_term.hpp>
 #include <stiffsoft/scene/make_simulation.hpp>
 
-#include "resume_run.hpp"
+#include "run_options.hpp"
 
 using namespace stiffsoft;
 
@@ -98,20 +98,17 @@ void follow_contacts(const BarrierTerm& barrier, const NewtonIterate& it, const 
 
 int main(int argc, char** argv) {
   CLI::App app{"newton_trace: one CSV row per Newton direction of a run (docs/newton.md, session 36)"};
-  std::string scene_file, run_dir, csv;
-  int steps = 10, threads = 1;
-  app.add_option("scene", scene_file, "scene file (JSON)")->required()->check(CLI::ExistingFile);
-  app.add_option("--resume", run_dir, "output folder of a run of that scene: start from its checkpoint.bin");
-  app.add_option("--steps", steps, "steps to take and trace")->check(CLI::PositiveNumber);
-  app.add_option("--threads", threads, "threads")->check(CLI::PositiveNumber);
+  tools::RunOptions options;
+  std::string csv;
+  options.add_to(app, "trace");
   app.add_option("--csv", csv, "the rows go here")->required();
   CLI11_PARSE(app, argc, argv);
-  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(options.threads));
 
   try {
-    SceneSimulation run = make_simulation(scene_file);
+    SceneSimulation run = make_simulation(options.scene_file);
     Simulation& sim = run.simulation;
-    if (!run_dir.empty()) tools::resume_run(run, scene_file, run_dir);
+    tools::resume_run(run, options);
     std::ofstream out(csv);
     out.precision(17);
     if (!out) throw std::runtime_error(csv + ": cannot be written");
@@ -139,7 +136,7 @@ int main(int argc, char** argv) {
       if (const BarrierTerm* barrier = find_term<BarrierTerm>(it)) follow_contacts(*barrier, it, dx, h, row);
       rows.push_back(row);
     });
-    for (int k = 0; k < steps; ++k) {
+    for (int k = 0; k < options.steps; ++k) {
       rows.clear();
       const StepStats stats = sim.step();
       // A direction's changes end where the next direction's begin; the last one's with the step.
