@@ -47,6 +47,7 @@ struct Row {
   double gap_speed = 0, gap_start = NAN, gap_ratio = NAN;  ///< of the contact whose distance moves most
 };
 
+/// The iterate's term of type Term, or null when the scene has none (no friction with μ = 0).
 template <class Term>
 const Term* find_term(const NewtonIterate& it) {
   for (const EnergyTerm* t : it.terms)
