@@ -583,6 +583,60 @@ TEST(EnergyTermsFriction, ReversedSlidesGetTheMajorizerInTheRevisedHessian) {
   EXPECT_GE(min_eigenvalue(Eigen::MatrixXd(revised - exact)), -kRoundOff * revised.norm());
 }
 
+// solver.release_hessian: a direction that takes an active contact 35–65 % of the rest of its
+// way out of d̂ (Newton on the barrier's cubic tail takes an unloaded one half-way) releases it,
+// and the revised H holds release_hessian (0.6) of that contact's Hessian. Every gap is near
+// 0.5 d̂: lifting the block by a quarter of d̂ takes the block–pad contacts half of their way out;
+// lifting pad and block together the pad–ground ones. The two revisions together take
+// 1 − release_hessian of the whole barrier Hessian off.
+TEST(EnergyTermsBarrier, ReleasedContactsKeepReleaseHessianOfTheirHessian) {
+  Fixture f;
+  const BarrierTerm& barrier = f.step.barrier;
+  const Eigen::MatrixX3d x = f.model.surface(f.q);
+  const Configuration c{f.q, x};
+  f.step.barrier.update(c);
+  const auto assembled = [&] {
+    BlockHessian H(f.model.blocks);
+    barrier.add_hessian(c, H);
+    return H;
+  };
+  const Eigen::MatrixXd exact = dense(assembled());
+  // dq lifting the named bodies by δ (m).
+  const auto lift = [&](const std::vector<std::string>& names, double delta) {
+    Eigen::VectorXd dq = Eigen::VectorXd::Zero(f.model.num_dofs);
+    for (const std::string& name : names) {
+      const BodyModel& body = f.model.bodies[body_index(f.model, name)];
+      if (body.dof >= 0) dq[body.dof + 1] = delta;
+      for (int i = body.node_begin; i < body.node_end; ++i)
+        if (f.model.nodes.dof[i] >= 0) dq[f.model.nodes.dof[i] + 1] = delta;
+    }
+    return dq;
+  };
+  // The change the revision makes to H along dq, or nothing if it releases no contact.
+  const auto revision = [&](const Eigen::VectorXd& dq) -> std::optional<Eigen::MatrixXd> {
+    BlockHessian H = assembled();
+    if (!barrier.revise_hessian(c, dq, f.model.surface_step(dq), H)) return std::nullopt;
+    return dense(H) - exact;
+  };
+  const double half_way = 0.25 * kDhat;
+  EXPECT_FALSE(revision(lift({"block"}, 0.2 * half_way)));  // a tenth of the way out
+  EXPECT_FALSE(revision(lift({"block"}, 2.5 * half_way)));  // past d̂
+  const std::optional<Eigen::MatrixXd> block = revision(lift({"block"}, half_way));
+  const std::optional<Eigen::MatrixXd> both = revision(lift({"pad", "block"}, half_way));
+  ASSERT_TRUE(block && both);
+  EXPECT_GT(block->norm(), 0.05 * exact.norm());
+  EXPECT_GT(both->norm(), 0.05 * exact.norm());
+  EXPECT_LT(relative_error(Eigen::MatrixXd(*block + *both), (f.settings.release_hessian - 1) * exact), kRoundOff);
+  // With release_hessian 1 nothing is revised.
+  SimulationSettings off = f.settings;
+  off.release_hessian = 1;
+  BarrierTerm unreleased(f.model, barrier_settings(f.model, off), nullptr);
+  unreleased.update(c);
+  BlockHessian H(f.model.blocks);
+  const Eigen::VectorXd dq = lift({"block"}, half_way);
+  EXPECT_FALSE(unreleased.revise_hessian(c, dq, f.model.surface_step(dq), H));
+}
+
 // A stencil once revised keeps its majorizer until friction is lagged again: the next Hessian
 // assembled is the revised one, and the same step's reversal revises nothing more.
 TEST(EnergyTermsFriction, RevisedStencilsKeepTheMajorizerUntilTheNextLag) {

@@ -94,6 +94,8 @@ TEST(FrontDoor, SettingsBuiltInCodeAreValidatedWithTheSettingsName) {
   EXPECT_EQ(message([](SimulationSettings& s) { s.dhat = -1; }), "SimulationSettings.dhat: must be > 0 and finite (got -1)");
   EXPECT_EQ(message([](SimulationSettings& s) { s.h = 0; }), "SimulationSettings.h: must be > 0 and finite (got 0)");
   EXPECT_EQ(message([](SimulationSettings& s) { s.max_iterations = 0; }), "SimulationSettings.max_iterations: must be ≥ 1 (got 0)");
+  EXPECT_EQ(message([](SimulationSettings& s) { s.release_hessian = 0; }),
+            "SimulationSettings.release_hessian: must be in (0, 1] (got 0)");
   EXPECT_EQ(message([](SimulationSettings& s) { s.gap_tolerance = 0; }),
             "SimulationSettings.gap_tolerance: must be > 0 and finite (got 0)");
   EXPECT_EQ(message([](SimulationSettings& s) { s.friction_iterations = 0; }),

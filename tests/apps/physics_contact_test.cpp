@@ -81,9 +81,10 @@ TEST(Incline, SticksAtMuHalf) {
   EXPECT_LE(r.travel, r.epsv * r.duration);
 }
 
-// The block lands (a Coulomb impact: friction takes at most μ times the normal impulse off
-// its speed along the slope) and then slides with a = g (sin θ − μ cos θ). Fitting
-// s(t) = s₀ + v₀ t + ½ a t² to its travel from 0.1 s after the first contact checks both.
+// The block lands (a Coulomb impact: friction takes μ times the normal impulse off its speed
+// along the slope, as long as it slides faster than ε_v) and then slides with
+// a = g (sin θ − μ cos θ). Fitting s(t) = s₀ + v₀ t + ½ a t² to its travel from 0.1 s after the
+// first contact checks both.
 TEST(Incline, SlidesAtMuPoint49WithTheAnalyticAcceleration) {
   const InclineRun r = run_incline(STIFFSOFT_SOURCE_DIR "/scenes/incline_slide.json", 0.0);
   EXPECT_TRUE(r.converged);
@@ -101,11 +102,16 @@ TEST(Incline, SlidesAtMuPoint49WithTheAnalyticAcceleration) {
     travel(Eigen::Index(k)) = fitted[k].y();
   }
   const Eigen::Vector3d c = basis.colPivHouseholderQr().solve(travel);
-  // A landing at speed v along the vertical leaves at most (sin θ − μ cos θ) v along the slope.
-  const double v0_bound = (std::sin(theta) - mu * std::cos(theta)) * r.landing_speed;
+  // A landing at speed v along the vertical leaves at most v_c = (sin θ − μ cos θ) v along the
+  // slope. Friction is smoothed below the slip speed ε_v (less than μλ there), so where v_c < ε_v
+  // the landing leaves the block at up to ε_v: a faster slide has full Coulomb friction and
+  // so speed v_c. Here v_c = 1.75e-3 m/s is below ε_v, and the landing step's exact solution
+  // (tolerance 1e-7 m/s, friction lagged to convergence) leaves 2.19e-3 m/s (docs/newton.md).
+  const double coulomb = (std::sin(theta) - mu * std::cos(theta)) * r.landing_speed;
+  const double v0_bound = std::max(coulomb, r.epsv);
   std::printf("μ = 0.49: a = %.5f m/s² (analytic %.5f, error %.2f %%), speed after landing %.2e m/s (Coulomb "
-              "impact: at most %.2e), travel %.4f m\n",
-              c(2), a, 100 * (c(2) / a - 1), c(1), v0_bound, r.travel);
+              "impact %.2e, ε_v %.2e), travel %.4f m\n",
+              c(2), a, 100 * (c(2) / a - 1), c(1), coulomb, r.epsv, r.travel);
   EXPECT_NEAR(c(2), a, 0.01 * a);
   EXPECT_GE(c(1), -1e-4);
   EXPECT_LE(c(1), v0_bound);
@@ -218,10 +224,11 @@ std::string landing_box(const std::string& solver) {
 }
 
 // With the default tolerance (1e-2 × diagonal / s: 0.14 mm per step against d̂ = 1 mm), the speed
-// rule alone stops Newton in the steps after the landing with the box pressed to 1.5 µm from the
-// floor, far from force balance: the log barrier pushes it out by about its gap per iteration,
-// a step below the tolerance. Newton's gap rule (no active gap changing by more than 20 % in
-// the last direction) keeps it where the barrier holds it.
+// rule alone stops Newton in the steps after the landing with the box pressed to micrometres
+// from the floor (38 µm; 1.5 µm with solver.release_hessian 1), far from force balance: the log
+// barrier pushes it out by about its gap per iteration, a step below the tolerance. Newton's gap
+// rule (no active gap changing by more than 20 % in the last direction) keeps it where the
+// barrier holds it.
 TEST(Landing, NewtonDoesNotStopWithTheBoxPressedIntoTheBarrier) {
   const auto smallest_gap = [](const std::string& solver) {
     Simulation sim = stiffsoft::testing::simulate(landing_box(solver));
@@ -237,7 +244,7 @@ TEST(Landing, NewtonDoesNotStopWithTheBoxPressedIntoTheBarrier) {
   std::printf("smallest gap over 10 steps: %.3e m with the gap rule, %.3e m with the speed rule alone (d-hat 1e-3 m)\n",
               with_rule, speed_rule_only);
   EXPECT_GT(with_rule, 0.5e-3);
-  EXPECT_LT(speed_rule_only, 1e-5);  // what the rule is for
+  EXPECT_LT(speed_rule_only, 0.1 * with_rule);  // what the rule is for
 }
 
 // The lag error is a velocity: in the step where a box lands, friction was lagged where it had

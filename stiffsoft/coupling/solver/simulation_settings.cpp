@@ -36,6 +36,7 @@ void validate(const SimulationSettings& s) {
   if (s.kappa) positive("kappa", *s.kappa);
   positive("tolerance", s.tolerance);
   positive("gap_tolerance", s.gap_tolerance);
+  if (!(s.release_hessian > 0 && s.release_hessian <= 1)) fail("release_hessian", "must be in (0, 1]", s.release_hessian);
   if (s.max_iterations < 1) fail("max_iterations", "must be ≥ 1", s.max_iterations);
   if (s.friction_iterations < 1) fail("friction_iterations", "must be ≥ 1", s.friction_iterations);
   try {
@@ -63,6 +64,7 @@ BarrierSettings barrier_settings(const Model& model, const SimulationSettings& s
   b.kappa = s.kappa;
   b.balance = s.balance_kappa;
   b.hessian = s.barrier_hessian;
+  b.release_hessian = s.release_hessian;
   b.bbox_diagonal = model.bounding_box_diagonal();
   double mass = 0;
   int n = 0;

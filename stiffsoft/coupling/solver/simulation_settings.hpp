@@ -35,6 +35,7 @@ struct SimulationSettings {
   double gap_tolerance = NewtonSettings{}.gap_tolerance;  ///< Newton also needs every active contact's gap to change by at most this fraction
   int max_iterations = NewtonSettings{}.max_iterations;  ///< Newton iteration cap per solve (a step solves again per friction re-lag)
   contact::BarrierHessian barrier_hessian = BarrierSettings{}.hessian;  ///< Newton's Hessian of the barrier stencils
+  double release_hessian = BarrierSettings{}.release_hessian;  ///< fraction of its Hessian a contact Newton releases keeps (BarrierSettings::release_hessian)
   std::string linear_solver = "auto";             ///< linear solver backend (see make_linear_solver())
   double krylov_rtol_max = ForcingTermSettings{}.eta_max;  ///< largest relative residual a Krylov solve may stop at (η_max)
   double kinematic_weight = 1e4;                  ///< inertia weight pulling kinematic bodies onto their path where they cannot be held on it (see Simulation)
@@ -45,7 +46,7 @@ struct SimulationSettings {
 
 /// Checks code-built settings as the scene loader checks a scene file: h, d̂, ε_v, ε_d, gap_tolerance,
 /// kinematic_weight and rigidity_bound > 0 and finite, μ and contact damping ≥ 0, κ > 0 when set,
-/// max_iterations and friction_iterations ≥ 1, krylov_rtol_max in (0, 1), gravity finite, a known linear solver, pair
+/// max_iterations and friction_iterations ≥ 1, release_hessian in (0, 1], krylov_rtol_max in (0, 1), gravity finite, a known linear solver, pair
 /// damping on bodies ≥ 0 with k_d ≥ 0. Throws std::invalid_argument naming the first bad
 /// setting and what was expected (`SimulationSettings.dhat: must be > 0 (got -1)`).
 void validate(const SimulationSettings& settings);

@@ -33,6 +33,12 @@ void add_low_rank_blocks(const StencilJacobian& J, const contact::LowRankHessian
     default: blocks(std::integral_constant<int, 5>{}); break;
   }
 }
+/// Whether a step from distance d0 to d1 (both in m, d0 < d̂) releases a contact: leaves it
+/// 35–65 % of its way out of d̂, as Newton on the barrier's cubic tail does (half of it).
+bool releases(double d0, double d1, double dhat) {
+  const double rest = (dhat - d1) / (dhat - d0);
+  return rest >= 0.35 && rest <= 0.65;
+}
 /// κ_min of IPC (ipc-toolkit, initial_barrier_stiffness): the stiffness at which the barrier's
 /// curvature at d = 1e-8 × diagonal balances 1e11 × the average mass.
 double kappa_min(const BarrierSettings& s) {
@@ -95,25 +101,55 @@ void BarrierTerm::add_gradient(const Configuration& c, Eigen::VectorXd& g) const
       });
 }
 
+void BarrierTerm::stencil_hessian(const Configuration& c, size_t k, double scale, StencilHessian& out) const {
+  const ContactConstraint& s = m_constraints[k];
+  const contact::Vector12d x = gather(c.x, s.vertices);
+  const StencilJacobian J(m_model, s.vertices);
+  if (m_settings.hessian == contact::BarrierHessian::Projected && !contact::mollifier_active(s.stencil, x)) {
+    contact::LowRankHessian H_x = contact::projected_barrier_factors(s.stencil, x, m_settings.dhat);
+    H_x.lambda *= scale * m_kappa * s.weight;
+    add_low_rank_blocks(J, H_x, out);
+    return;
+  }
+  J.block_hessians(scale * m_kappa * s.weight * contact::barrier_newton_hessian(s.stencil, x, m_settings.dhat, m_settings.hessian),
+                   out);
+}
+
 void BarrierTerm::add_hessian(const Configuration& c, BlockHessian& H) const {
   // The stencils' Hessians (their projections dominate) and their Jᵀ H J blocks run in
   // parallel; adding the blocks to H is serial.
   assemble_in_chunks<StencilHessian>(
-      m_constraints.size(),
-      [&](size_t k, StencilHessian& out) {
-        const ContactConstraint& s = m_constraints[k];
-        const contact::Vector12d x = gather(c.x, s.vertices);
-        const StencilJacobian J(m_model, s.vertices);
-        if (m_settings.hessian == contact::BarrierHessian::Projected && !contact::mollifier_active(s.stencil, x)) {
-          contact::LowRankHessian H_x = contact::projected_barrier_factors(s.stencil, x, m_settings.dhat);
-          H_x.lambda *= m_kappa * s.weight;
-          add_low_rank_blocks(J, H_x, out);
-          return;
-        }
-        J.block_hessians(m_kappa * s.weight * contact::barrier_newton_hessian(s.stencil, x, m_settings.dhat, m_settings.hessian),
-                         out);
-      },
+      m_constraints.size(), [&](size_t k, StencilHessian& out) { stencil_hessian(c, k, 1.0, out); },
       [&](size_t, const StencilHessian& out) { out.add_to(H); });
+}
+
+bool BarrierTerm::revise_hessian(const Configuration& c, const Eigen::VectorXd&, const Eigen::MatrixX3d& dx,
+                                 BlockHessian& H) const {
+  const double fraction = m_settings.release_hessian;
+  if (fraction == 1.0) return false;
+  struct Revision {
+    bool released = false;
+    StencilHessian blocks;
+  };
+  bool revised = false;
+  const double dhat = m_settings.dhat;
+  assemble_in_chunks<Revision>(
+      m_constraints.size(),
+      [&](size_t k, Revision& out) {
+        const ContactConstraint& s = m_constraints[k];
+        const contact::Vector12d x0 = gather(c.x, s.vertices);
+        const double d0 = std::sqrt(contact::stencil_squared_distance(s.stencil, x0));
+        const double d1 = std::sqrt(contact::stencil_squared_distance(s.stencil, x0 + gather(dx, s.vertices)));
+        out.released = releases(d0, d1, dhat);
+        // H holds the stencil's whole Hessian: adding fraction − 1 of it leaves fraction.
+        if (out.released) stencil_hessian(c, k, fraction - 1.0, out.blocks);
+      },
+      [&](size_t, const Revision& out) {
+        if (!out.released) return;
+        out.blocks.add_to(H);
+        revised = true;
+      });
+  return revised;
 }
 
 double BarrierTerm::max_step(const Configuration& c, const Eigen::VectorXd&, const Eigen::MatrixX3d& dx) const {

@@ -9,6 +9,7 @@
 #include <stiffsoft/coupling/contact/constraint_set.hpp>
 #include <stiffsoft/coupling/solver/phase_times.hpp>
 #include <stiffsoft/coupling/contact/swept_candidates.hpp>
+#include <stiffsoft/coupling/model/stencil_jacobian.hpp>
 #include <stiffsoft/coupling/terms/energy_term.hpp>
 
 namespace stiffsoft {
@@ -25,6 +26,9 @@ struct BarrierSettings {
   double average_mass = 1.0;        ///< average dynamic body mass (kg), for κ_min
   /// Newton's Hessian of each stencil (scene key solver.barrier_hessian).
   contact::BarrierHessian hessian = contact::BarrierHessian::Projected;
+  /// The fraction of its Hessian Newton solves again with for a contact its direction releases,
+  /// taking it 35–65 % of the rest of the way out of d̂ (scene key solver.release_hessian; 1: off).
+  double release_hessian = 0.6;
 };
 
 /// The contact barrier term.
@@ -43,6 +47,12 @@ class BarrierTerm final : public EnergyTerm {
   void add_gradient(const Configuration& c, Eigen::VectorXd& g) const override;
   /// See EnergyTerm::add_hessian.
   void add_hessian(const Configuration& c, BlockHessian& H) const override;
+  /// See EnergyTerm::revise_hessian: on every active contact the full step dx releases
+  /// (takes 35–65 % of the rest of the way out of d̂), replaces its Hessian in H by BarrierSettings::release_hessian of it; true if
+  /// any. Newton on the barrier's cubic tail takes an unloaded contact half of the rest of the
+  /// way out per step; with 0.6 of the Hessian it takes it all but a sixth (docs/newton.md).
+  bool revise_hessian(const Configuration& c, const Eigen::VectorXd& dq, const Eigen::MatrixX3d& dx,
+                      BlockHessian& H) const override;
   /// Conservative CCD over the straight-line motion x → x + dx; its broad phase (grown by
   /// d̂/2) is kept for update() on the same segment.
   double max_step(const Configuration& c, const Eigen::VectorXd& dq, const Eigen::MatrixX3d& dx) const override;
@@ -75,6 +85,8 @@ class BarrierTerm final : public EnergyTerm {
   double dhat() const { return m_settings.dhat; }
 
  private:
+  /// scale × stencil k's Newton Hessian at c, as blocks of J^T H J.
+  void stencil_hessian(const Configuration& c, size_t k, double scale, StencilHessian& out) const;
   const Model& m_model;
   BarrierSettings m_settings;
   PhaseTimes* m_times;
