@@ -224,8 +224,8 @@ std::string landing_box(const std::string& solver) {
 }
 
 // With the default tolerance (1e-2 × diagonal / s: 0.14 mm per step against d̂ = 1 mm), the speed
-// rule alone stops Newton in the steps after the landing with the box pressed to micrometres
-// from the floor (38 µm; 1.5 µm with solver.release_hessian 1), far from force balance: the log
+// rule alone stops Newton in the steps after the landing with the box pressed to a few hundredths
+// of d̂ from the floor (38 µm; 1.5 µm with solver.release_hessian 1), far from force balance: the log
 // barrier pushes it out by about its gap per iteration, a step below the tolerance. Newton's gap
 // rule (no active gap changing by more than 20 % in the last direction) keeps it where the
 // barrier holds it.

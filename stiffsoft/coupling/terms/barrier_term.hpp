@@ -47,10 +47,11 @@ class BarrierTerm final : public EnergyTerm {
   void add_gradient(const Configuration& c, Eigen::VectorXd& g) const override;
   /// See EnergyTerm::add_hessian.
   void add_hessian(const Configuration& c, BlockHessian& H) const override;
-  /// See EnergyTerm::revise_hessian: on every active contact the full step dx releases
-  /// (takes 35–65 % of the rest of the way out of d̂), replaces its Hessian in H by BarrierSettings::release_hessian of it; true if
-  /// any. Newton on the barrier's cubic tail takes an unloaded contact half of the rest of the
-  /// way out per step; with 0.6 of the Hessian it takes it all but a sixth (docs/newton.md).
+  /// See EnergyTerm::revise_hessian: on every active contact the full step dx releases (takes
+  /// 35–65 % of the rest of the way out of d̂), replaces its Hessian in H by
+  /// BarrierSettings::release_hessian of it; true if any. Newton on the barrier's cubic tail
+  /// takes an unloaded contact half of the rest of the way out per step; with 0.6 of the
+  /// Hessian it takes it all but a sixth (docs/newton.md).
   bool revise_hessian(const Configuration& c, const Eigen::VectorXd& dq, const Eigen::MatrixX3d& dx,
                       BlockHessian& H) const override;
   /// Conservative CCD over the straight-line motion x → x + dx; its broad phase (grown by
