@@ -124,7 +124,11 @@ TEST(NewtonMinimize, QuadraticIsMinimisedByTheFirstNewtonStep) {
 
   // One iteration: the full Newton step (α = 1, one energy evaluation) lands on A⁻¹b, to the
   // round-off of a Cholesky solve with condition ≈ 50 (≈ 1e-14 relative; 1e-10 is the margin).
-  NewtonSettings one;
+  // Trials on the straight line q + α p: a geodesic trial turns the box off the line along which
+  // a quadratic in q is minimised (TrialPath).
+  NewtonSettings straight;
+  straight.geodesic_line_search = false;
+  NewtonSettings one = straight;
   one.max_iterations = 1;
   Eigen::VectorXd q = model.initial_q();
   const NewtonReport first = newton_minimize(model, terms, q, *solver, one, times);
@@ -136,7 +140,7 @@ TEST(NewtonMinimize, QuadraticIsMinimisedByTheFirstNewtonStep) {
 
   // Unbounded: the step to A⁻¹b, then a zero step that meets the stopping rule.
   q = model.initial_q();
-  const NewtonReport report = newton_minimize(model, terms, q, *solver, NewtonSettings{}, times);
+  const NewtonReport report = newton_minimize(model, terms, q, *solver, straight, times);
   EXPECT_TRUE(report.converged) << report.failure;
   EXPECT_EQ(report.iterations, 2);
   EXPECT_LT((q - q_star).norm(), 1e-10 * q_star.norm());
@@ -172,7 +176,9 @@ TEST(NewtonMinimize, ReportsTheIterationsWhoseStepCcdBounded) {
   const std::unique_ptr<LinearSolver> solver = make_linear_solver("cholmod");
   PhaseTimes times;
   Eigen::VectorXd q = model.initial_q();
-  const NewtonReport report = newton_minimize(model, terms, q, *solver, NewtonSettings{}, times);
+  NewtonSettings straight;  // as in QuadraticIsMinimisedByTheFirstNewtonStep
+  straight.geodesic_line_search = false;
+  const NewtonReport report = newton_minimize(model, terms, q, *solver, straight, times);
   EXPECT_TRUE(report.converged) << report.failure;
   // A quarter of the way, then the rest of the (same) Newton step, then a zero step.
   EXPECT_EQ(report.iterations, 3);

@@ -182,23 +182,63 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
       gap_note = " (the last direction was below the speed tolerance but moved a sticking friction contact by " +
                  std::to_string(int(std::lround(100 * stick_step))) + " % of ε_v h, above " +
                  std::to_string(int(std::lround(100 * settings.stick_tolerance))) + " %)";
-    double alpha = 1.0;
-    for (const EnergyTerm* t : terms) alpha = std::min(alpha, t->max_step(c, p, dx));
-    report.smallest_ccd_step = std::min(report.smallest_ccd_step, alpha);
-    report.ccd_limited_iterations += alpha < 1;
-    if (settings.observer) settings.observer({model, terms, c, report.iterations, E, g, H, p, alpha});
+    // The largest fraction of a move dq from q that CCD finds free of intersections.
+    const auto ccd_bound = [&](const Eigen::VectorXd& dq, const Eigen::MatrixX3d& dx_dq) {
+      double bound = 1.0;
+      for (const EnergyTerm* t : terms) bound = std::min(bound, t->max_step(c, dq, dx_dq));
+      return bound;
+    };
+    // Trials are q + α p, or the geodesic path's q(α), for α = 1, ½, ¼, … A straight trial's
+    // α starts at p's CCD bound; a geodesic trial is cut to the CCD bound of its chord from q
+    // (the segment linear CCD checks exactly). Once a geodesic trial does not lower E (or CCD
+    // lets its chord not move at all), the search goes on along the straight line from the same
+    // α: never worse than the line where the energy is not the orthogonality's (a turn far from
+    // a rotation, a test energy).
+    const TrialPath path(model, q, p, settings.geodesic_line_search && !basis, std::abs(g.dot(p)));
+    bool straight = path.straight();
+    double line_bound = -1;  // p's CCD bound, once needed
+    const auto along_p = [&](double a) {
+      if (line_bound < 0) line_bound = ccd_bound(p, dx);
+      return std::min(a, line_bound);
+    };
+    Eigen::VectorXd chord;
+    const auto chord_bound = [&](double a) {  // leaves q(a) in q_trial
+      path.point(a, q_trial);
+      chord = q_trial - q;
+      return ccd_bound(chord, model.surface_step(chord));
+    };
+    double bound = straight ? along_p(1.0) : chord_bound(1.0);
+    double alpha = straight ? bound : 1.0;
+    report.smallest_ccd_step = std::min(report.smallest_ccd_step, bound);
+    report.ccd_limited_iterations += bound < 1;
+    if (settings.observer) settings.observer({model, terms, c, report.iterations, E, g, H, p, bound});
     bool accepted = false;
     Eigen::MatrixX3d x_trial;
     double E_trial = E;
     for (int ls = 0; alpha > 0 && ls < settings.max_line_search; ++ls) {
       ++report.line_search_steps;
-      q_trial = q + alpha * p;
+      const bool geodesic = !straight;
+      if (geodesic) {
+        if (ls > 0) bound = chord_bound(alpha);
+        if (bound < 1) q_trial = q + bound * chord;
+        if (bound <= 0) {
+          straight = true;
+          alpha = along_p(alpha);
+          if (alpha <= 0) break;
+        }
+      }
+      if (straight) q_trial = q + alpha * p;
       x_trial = model.surface(q_trial);
       update_all(terms, {q_trial, x_trial});
       E_trial = total_energy(terms, {q_trial, x_trial});
       if (E_trial <= E) {
         accepted = true;
         break;
+      }
+      if (geodesic && !straight) {  // the same α once more, on the straight line
+        straight = true;
+        alpha = along_p(alpha);
+        continue;
       }
       alpha *= 0.5;
     }

@@ -12,6 +12,7 @@
 #include <stiffsoft/coupling/linear_solver/linear_solver.hpp>
 #include <stiffsoft/coupling/model/model.hpp>
 #include <stiffsoft/coupling/solver/phase_times.hpp>
+#include <stiffsoft/coupling/solver/trial_path.hpp>
 #include <stiffsoft/coupling/terms/energy_term.hpp>
 
 namespace stiffsoft {
@@ -28,7 +29,10 @@ struct NewtonSettings {
   double stick_tolerance = std::numeric_limits<double>::infinity();
   double h = 1e-2;           ///< time step (s), to turn the step into a speed
   int max_iterations = 200;  ///< cap on iterations
-  int max_line_search = 60;  ///< cap on halvings of α
+  int max_line_search = 60;  ///< cap on line-search trials per direction
+  /// Line-search trials turn affine bodies along the rotation group (TrialPath); false: along
+  /// the straight line q + α p. Ignored with joints' eliminated equalities, which are linear in q.
+  bool geodesic_line_search = true;
   ForcingTermSettings forcing;  ///< relative tolerances of Krylov solves (inexact Newton)
   /// DOF blocks held where they are (prescribed motion already in place): their gradient rows
   /// and off-diagonal Hessian blocks are dropped and every direction is zero on them.
@@ -49,7 +53,7 @@ struct NewtonIterate {
   const Eigen::VectorXd& g;                ///< ∇E(q) (held blocks zeroed)
   const BlockHessian& H;                   ///< the matrix p was solved with (revised if a term revised it)
   const Eigen::VectorXd& p;                ///< the direction
-  double alpha;                            ///< the CCD bound on the step along p, ≤ 1
+  double alpha;                            ///< the CCD bound of the first trial, ≤ 1: along p, or along the chord to the geodesic path's end (TrialPath)
 };
 
 /// What one minimisation did.

@@ -1,0 +1,35 @@
+#include <stiffsoft/coupling/solver/trial_path.hpp>
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+
+#include <stiffsoft/libabd/affine_body.hpp>
+
+namespace stiffsoft {
+
+TrialPath::TrialPath(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& p, bool geodesic, double decrease)
+    : m_q(q), m_p(p) {
+  if (!geodesic) return;
+  for (const BodyModel& body : model.bodies) {
+    if (body.dof < 0 || body.motion != Motion::Dynamic) continue;
+    const Eigen::Matrix3d A = abd::affine_matrix(q.segment<12>(body.dof));
+    const Eigen::Matrix3d M = abd::affine_matrix(p.segment<12>(body.dof)) * A.inverse();
+    const Eigen::Matrix3d W = 0.5 * (M - M.transpose());
+    const Eigen::Vector3d w(W(2, 1), W(0, 2), W(1, 0));
+    // The orthogonality energy the straight line adds by turning the body, unseen by the model.
+    const double stretch = body.kappa * body.volume * (W * W.transpose()).squaredNorm();
+    if (w.squaredNorm() > 0 && stretch >= decrease) m_turns.push_back({body.dof, A, w, 0.5 * (M + M.transpose())});
+  }
+}
+
+void TrialPath::point(double alpha, Eigen::VectorXd& out) const {
+  out = m_q + alpha * m_p;
+  for (const Turn& t : m_turns) {
+    const double angle = alpha * t.w.norm();
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(angle, t.w.normalized()).toRotationMatrix();
+    const Eigen::Matrix3d A = R * (Eigen::Matrix3d::Identity() + alpha * t.S) * t.A;
+    out.segment<12>(t.dof) = abd::make_q(out.segment<3>(t.dof), A);
+  }
+}
+
+}  // namespace stiffsoft
