@@ -11,9 +11,9 @@
 namespace stiffsoft {
 
 /// q(α) for α in (0, 1] from the iterate q along the direction p. Straight: q + α p. Geodesic:
-/// every dynamic affine body with ΔA A⁻¹ = W + S (W skew, S symmetric; A, ΔA its affine matrix
-/// and the direction's) takes A(α) = exp(α W) (I + α S) A and its translation + α Δp; soft
-/// nodes and everything else move straight. Both paths leave q along p (q′(0) = p), so gᵀp is
+/// a dynamic affine body with ΔA A⁻¹ = W + S (W skew, S symmetric; A, ΔA its affine matrix and
+/// the direction's) whose turn matters (see the constructor) takes A(α) = exp(α W) (I + α S) A
+/// and its translation + α Δp; other bodies, soft nodes and everything else move straight. Both paths leave q along p (q′(0) = p), so gᵀp is
 /// the slope of either. Linear in A, a turn by θ stretches A by about θ², which the stiff
 /// orthogonality potential answers with an energy of order κ ν θ⁴ that Newton's model (flat
 /// along rotations at an orthogonal A) does not see; along exp(α W) the turn stretches nothing.
