@@ -220,11 +220,12 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
       const bool geodesic = !straight;
       if (geodesic) {
         if (ls > 0) bound = chord_bound(alpha);
-        if (bound < 1) q_trial = q + bound * chord;
         if (bound <= 0) {
           straight = true;
           alpha = along_p(alpha);
           if (alpha <= 0) break;
+        } else if (bound < 1) {
+          q_trial = q + bound * chord;
         }
       }
       if (straight) q_trial = q + alpha * p;

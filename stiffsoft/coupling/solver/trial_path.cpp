@@ -12,13 +12,15 @@ TrialPath::TrialPath(const Model& model, const Eigen::VectorXd& q, const Eigen::
   if (!geodesic) return;
   for (const BodyModel& body : model.bodies) {
     if (body.dof < 0 || body.motion != Motion::Dynamic) continue;
-    const Eigen::Matrix3d A = abd::affine_matrix(q.segment<12>(body.dof));
-    const Eigen::Matrix3d M = abd::affine_matrix(p.segment<12>(body.dof)) * A.inverse();
-    const Eigen::Matrix3d W = 0.5 * (M - M.transpose());
-    const Eigen::Vector3d w(W(2, 1), W(0, 2), W(1, 0));
-    // The orthogonality energy the straight line adds by turning the body, unseen by the model.
-    const double stretch = body.kappa * body.volume * (W * W.transpose()).squaredNorm();
-    if (w.squaredNorm() > 0 && stretch >= decrease) m_turns.push_back({body.dof, A, w, 0.5 * (M + M.transpose())});
+    const abd::Vector12d q_b = q.segment<12>(body.dof), p_b = p.segment<12>(body.dof);
+    const Eigen::Vector3d w = abd::angular_velocity(q_b, p_b);  // W's axial vector
+    // The orthogonality energy the straight line adds by turning the body, unseen by the model:
+    // κ ν ‖W Wᵀ‖²_F = 2 κ ν |w|⁴.
+    const double stretch = 2 * body.kappa * body.volume * w.squaredNorm() * w.squaredNorm();
+    if (w.squaredNorm() == 0 || stretch < decrease) continue;
+    const Eigen::Matrix3d A = abd::affine_matrix(q_b);
+    const Eigen::Matrix3d M = abd::affine_matrix(p_b) * A.inverse();
+    m_turns.push_back({body.dof, A, w, 0.5 * (M + M.transpose())});
   }
 }
 
