@@ -7,7 +7,10 @@
 ///
 /// Arrays are compressed in blocks of 32 KiB, each block one zlib stream: the appended data
 /// of an array is its header (block count, block size, size of a partial last block, then
-/// each block's compressed size, all UInt64) followed by the compressed blocks.
+/// each block's compressed size, all UInt64) followed by the compressed blocks. A block is
+/// deflated when at least a quarter of its bytes are zero (cells, mostly zero forces) and
+/// stored in its zlib stream otherwise (the moving bodies' positions and velocities, which
+/// deflate shrinks by 0–20 % at 20–40 times the time).
 
 #include <cstdint>
 #include <string>

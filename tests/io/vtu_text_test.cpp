@@ -21,7 +21,8 @@ namespace stiffsoft {
 namespace {
 
 /// VTK's own reader gets back every array VtuText wrote, exactly, including arrays larger than
-/// one 32 KiB compression block and both kinds of field data.
+/// one 32 KiB compression block, both kinds of field data, and blocks both stored (the points:
+/// few zero bytes) and deflated (the connectivity: mostly zero bytes).
 TEST(VtuText, VtkReadsBackEveryArrayExactly) {
   const int n = 3000, tets = 2000, triangles = 1500;  // points: 72 KB, three compression blocks
   std::vector<double> x(3 * n), v(3 * n), stress(tets + triangles);
