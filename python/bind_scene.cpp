@@ -304,6 +304,8 @@ void bind_scene(py::module_& m) {
                      "fraction of its barrier Hessian a contact keeps when a direction takes it 35-65 % of the way out of d-hat")
       .def_readwrite("geodesic_line_search", &SolverDescription::geodesic_line_search,
                      "line-search trials turn affine bodies along the rotation group, exp(alpha W) (I + alpha S) A")
+      .def_readwrite("island_line_search", &SolverDescription::island_line_search,
+                     "each island of uncoupled bodies gets its own CCD bound and line-search step")
       .def_readwrite("linear", &SolverDescription::linear, "the linear solver ('auto', 'cholmod', 'petsc', 'petsc:KSP[:PC]')")
       .def_readwrite("krylov_rtol_max", &SolverDescription::krylov_rtol_max, "largest relative residual of a Krylov solve")
       .def_readwrite("rigidity_bound", &SolverDescription::rigidity_bound, "largest |A^T A - I|_F of an affine body before the run stops");

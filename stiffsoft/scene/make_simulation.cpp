@@ -52,6 +52,7 @@ SimulationSettings simulation_settings(const SceneDescription& scene, const std:
   s.barrier_hessian = scene.solver.barrier_hessian;
   s.release_hessian = scene.solver.release_hessian;
   s.geodesic_line_search = scene.solver.geodesic_line_search;
+  s.island_line_search = scene.solver.island_line_search;
   s.linear_solver = scene.solver.linear;
   s.krylov_rtol_max = scene.solver.krylov_rtol_max;
   s.rigidity_bound = scene.solver.rigidity_bound;

@@ -56,6 +56,7 @@ struct SolverDescription {
   contact::BarrierHessian barrier_hessian = SimulationSettings{}.barrier_hessian;  ///< Newton's Hessian of the barrier stencils
   double release_hessian = SimulationSettings{}.release_hessian;  ///< fraction of its Hessian a contact Newton releases keeps, in (0, 1]
   bool geodesic_line_search = SimulationSettings{}.geodesic_line_search;  ///< line-search trials turn affine bodies along the rotation group
+  bool island_line_search = SimulationSettings{}.island_line_search;  ///< each island of uncoupled bodies its own CCD bound and step
   std::string linear = SimulationSettings{}.linear_solver;  ///< linear solver backend (see make_linear_solver())
   double krylov_rtol_max = ForcingTermSettings{}.eta_max;  ///< η_max: largest relative residual a Krylov solve may stop at
   double rigidity_bound = SimulationSettings{}.rigidity_bound;  ///< largest ‖AᵀA − I‖_F an affine body may reach before the run stops

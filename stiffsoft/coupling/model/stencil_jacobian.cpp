@@ -1,5 +1,7 @@
 #include <stiffsoft/coupling/model/stencil_jacobian.hpp>
 
+#include <stiffsoft/coupling/model/block_islands.hpp>
+
 #include <stdexcept>
 
 #include <stiffsoft/coupling/linear_solver/column_strips.hpp>
@@ -54,7 +56,7 @@ StencilJacobian::StencilJacobian(const Model& model, const std::array<int, 4>& v
     const int v = vertices[i];
     if (v < 0) continue;
     const int node = model.mesh.vertex_node[v];
-    const int b = node < 0 ? model.bodies[model.mesh.vertex_body[v]].block : model.nodes.block[node];
+    const int b = vertex_block(model, v);
     if (b < 0) continue;
     int s = 0;
     while (s < slots && block[s] != b) ++s;

@@ -182,33 +182,64 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
       gap_note = " (the last direction was below the speed tolerance but moved a sticking friction contact by " +
                  std::to_string(int(std::lround(100 * stick_step))) + " % of ε_v h, above " +
                  std::to_string(int(std::lround(100 * settings.stick_tolerance))) + " %)";
-    // The largest fraction of a move dq from q that CCD finds free of intersections.
-    const auto ccd_bound = [&](const Eigen::VectorXd& dq, const Eigen::MatrixX3d& dx_dq) {
-      double bound = 1.0;
-      for (const EnergyTerm* t : terms) bound = std::min(bound, t->max_step(c, dq, dx_dq));
-      return bound;
+    // The largest fraction of a move dq from q that CCD finds free of intersections, per
+    // island of the blocks the terms couple on that move (one island without
+    // island_line_search, or when a term couples everything).
+    struct MoveBounds {
+      BlockIslands islands;
+      std::vector<double> bound;  // per island
+      double smallest = 1.0;
     };
-    // Trials are q + α p, or the geodesic path's q(α), for α = 1, ½, ¼, … A straight trial's
-    // α starts at p's CCD bound; a geodesic trial is cut to the CCD bound of its chord from q
-    // (the segment linear CCD checks exactly). Once a geodesic trial does not lower E (or CCD
-    // lets its chord not move at all), the search goes on along the straight line from the same
-    // α: never worse than the line where the energy is not the orthogonality's (a turn far from
-    // a rotation, a test energy).
+    const bool by_island = settings.island_line_search && !basis;
+    const auto move_bounds = [&](const Eigen::VectorXd& dq, const Eigen::MatrixX3d& dx_dq) {
+      MoveBounds m{BlockIslands(int(model.blocks.size())), {}, 1.0};
+      if (!by_island) m.islands.join_all();
+      for (const EnergyTerm* t : terms)
+        if (by_island) t->join_coupled_blocks(c, dx_dq, m.islands);
+      m.islands.number();
+      m.bound.assign(std::size_t(m.islands.count()), 1.0);
+      for (const EnergyTerm* t : terms)  // by island: on the broad phases the joins built
+        if (by_island)
+          t->max_step_per_island(c, dq, dx_dq, m.islands, m.bound);
+        else
+          m.bound[0] = std::min(m.bound[0], t->max_step(c, dq, dx_dq));
+      m.smallest = *std::min_element(m.bound.begin(), m.bound.end());
+      return m;
+    };
+    // Trials are q + α p, or the geodesic path's q(α), for α = 1, ½, ¼, … A straight trial
+    // moves each island by its own multiple of p, starting at its CCD bound; a geodesic trial
+    // moves each island along its part of the chord from q to q(α), cut to that island's CCD
+    // bound of the chord (the segment linear CCD checks exactly). Once a geodesic trial does not
+    // lower E (or CCD lets some island's chord not move at all), the search goes on along the
+    // straight line from the same α: never worse than the line where the energy is not the
+    // orthogonality's (a turn far from a rotation, a test energy).
     const TrialPath path(model, q, p, settings.geodesic_line_search && !basis, std::abs(g.dot(p)));
     bool straight = path.straight();
-    double line_bound = -1;  // p's CCD bound, once needed
-    const auto along_p = [&](double a) {
-      if (line_bound < 0) line_bound = ccd_bound(p, dx);
-      return std::min(a, line_bound);
+    std::optional<MoveBounds> line;  // p's bounds, once needed
+    std::vector<double> scale;       // straight trials: each island of `line` moves by scale[i] p
+    double alpha = 1.0;              // geodesic: the path's α; straight: the largest scale
+    const auto go_straight = [&](double a) {  // the straight line from α = a
+      if (!line) line = move_bounds(p, dx);
+      straight = true;
+      scale = line->bound;
+      for (double& s : scale) s = std::min(s, a);
+      alpha = *std::max_element(scale.begin(), scale.end());
     };
     Eigen::VectorXd chord;
-    const auto chord_bound = [&](double a) {  // leaves q(a) in q_trial
+    std::optional<MoveBounds> chord_bounds;
+    const auto bound_chord = [&](double a) {  // leaves q(a) in q_trial
       path.point(a, q_trial);
       chord = q_trial - q;
-      return ccd_bound(chord, model.surface_step(chord));
+      chord_bounds = move_bounds(chord, model.surface_step(chord));
+      return chord_bounds->smallest;
     };
-    double bound = straight ? along_p(1.0) : chord_bound(1.0);
-    double alpha = straight ? bound : 1.0;
+    double bound = 1.0;
+    if (straight) {
+      go_straight(1.0);
+      bound = line->smallest;
+    } else {
+      bound = bound_chord(1.0);
+    }
     report.smallest_ccd_step = std::min(report.smallest_ccd_step, bound);
     report.ccd_limited_iterations += bound < 1;
     if (settings.observer) settings.observer({model, terms, c, report.iterations, E, g, H, p, bound});
@@ -219,16 +250,15 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
       ++report.line_search_steps;
       const bool geodesic = !straight;
       if (geodesic) {
-        if (ls > 0) bound = chord_bound(alpha);
+        if (ls > 0) bound = bound_chord(alpha);
         if (bound <= 0) {
-          straight = true;
-          alpha = along_p(alpha);
+          go_straight(alpha);
           if (alpha <= 0) break;
         } else if (bound < 1) {
-          q_trial = q + bound * chord;
+          q_trial = q + chord_bounds->islands.scaled(model, chord, chord_bounds->bound);
         }
       }
-      if (straight) q_trial = q + alpha * p;
+      if (straight) q_trial = q + line->islands.scaled(model, p, scale);
       x_trial = model.surface(q_trial);
       update_all(terms, {q_trial, x_trial});
       E_trial = total_energy(terms, {q_trial, x_trial});
@@ -237,11 +267,11 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
         break;
       }
       if (geodesic && !straight) {  // the same α once more, on the straight line
-        straight = true;
-        alpha = along_p(alpha);
+        go_straight(alpha);
         continue;
       }
       alpha *= 0.5;
+      for (double& s : scale) s *= 0.5;
     }
     if (accepted) {
       q.swap(q_trial);

@@ -33,6 +33,10 @@ struct NewtonSettings {
   /// Line-search trials turn affine bodies along the rotation group (TrialPath); false: along
   /// the straight line q + α p. Ignored with joints' eliminated equalities, which are linear in q.
   bool geodesic_line_search = true;
+  /// Each island of DOF blocks that no term couples on the move (EnergyTerm::join_coupled_blocks)
+  /// is cut to its own CCD bound, so that an impact in one island does not shorten the others'
+  /// steps; false: one bound for all.
+  bool island_line_search = true;
   ForcingTermSettings forcing;  ///< relative tolerances of Krylov solves (inexact Newton)
   /// DOF blocks held where they are (prescribed motion already in place): their gradient rows
   /// and off-diagonal Hessian blocks are dropped and every direction is zero on them.
@@ -53,7 +57,7 @@ struct NewtonIterate {
   const Eigen::VectorXd& g;                ///< ∇E(q) (held blocks zeroed)
   const BlockHessian& H;                   ///< the matrix p was solved with (revised if a term revised it)
   const Eigen::VectorXd& p;                ///< the direction
-  double alpha;                            ///< the CCD bound of the first trial, ≤ 1: along p, or along the chord to the geodesic path's end (TrialPath)
+  double alpha;                            ///< the CCD bound of the first trial, ≤ 1 (the smallest island's): along p, or along the chord to the geodesic path's end (TrialPath)
 };
 
 /// What one minimisation did.

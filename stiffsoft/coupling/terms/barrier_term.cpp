@@ -1,6 +1,7 @@
 #include <stiffsoft/coupling/terms/barrier_term.hpp>
 
 #include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
@@ -52,6 +53,7 @@ BarrierTerm::BarrierTerm(const Model& model, const BarrierSettings& settings, Ph
     : m_model(model), m_settings(settings), m_times(times),
       // A body's pairs are found again once it moves d̂ out of its last boxes (on medium,
       // margins of 0.5, 1, 2 and 4 d̂ cost the same within this machine's noise).
+      m_vertex_block(vertex_blocks(model)),
       m_broad_phase(settings.dhat) {
   m_kappa = settings.kappa ? *settings.kappa : kappa_min(settings);
   m_kappa_max = settings.kappa ? *settings.kappa : 100 * m_kappa;
@@ -158,39 +160,111 @@ double BarrierTerm::max_step(const Configuration& c, const Eigen::VectorXd&, con
   const Eigen::MatrixX3d x1 = c.x + dx;
   // One broad phase for the CCD and every line-search trial of this direction (update()).
   m_swept.emplace(m_model, c.x, x1, 0.5 * m_settings.dhat, 0.01 * m_settings.dhat, m_broad_phase);
+  std::vector<double> bound{1.0};
+  ccd_bounds(c.x, x1, nullptr, bound);
+  return bound[0];
+}
+
+void BarrierTerm::join_coupled_blocks(const Configuration& c, const Eigen::MatrixX3d& dx, BlockIslands& islands) const {
+  double dummy = 0;
+  ScopedTimer timer(m_times ? m_times->ccd : dummy);
+  m_swept.emplace(m_model, c.x, c.x + dx, 0.5 * m_settings.dhat, 0.01 * m_settings.dhat, m_broad_phase);
+  const Candidates& all = m_swept->all();
+  const CollisionMesh& mesh = m_model.mesh;
+  const std::vector<int>& block = m_vertex_block;
+  // The pairs come body pair by body pair, so a pair's blocks are mostly the last pair's.
+  std::array<int, 4> last{-1, -1, -1, -1};
+  const auto join = [&](const std::array<int, 4>& blocks) {
+    if (blocks == last) return;
+    islands.join_blocks(blocks);
+    last = blocks;
+  };
+  for (const auto& [v, f] : all.vertex_face) join({block[v], block[mesh.F(f, 0)], block[mesh.F(f, 1)], block[mesh.F(f, 2)]});
+  for (const auto& [ea, eb] : all.edge_edge)
+    join({block[mesh.E(ea, 0)], block[mesh.E(ea, 1)], block[mesh.E(eb, 0)], block[mesh.E(eb, 1)]});
+}
+
+void BarrierTerm::max_step_per_island(const Configuration& c, const Eigen::VectorXd&, const Eigen::MatrixX3d& dx,
+                                      const BlockIslands& islands, std::vector<double>& bound) const {
+  double dummy = 0;
+  ScopedTimer timer(m_times ? m_times->ccd : dummy);
+  ccd_bounds(c.x, c.x + dx, islands.count() == 1 ? nullptr : &islands, bound);
+}
+
+void BarrierTerm::ccd_bounds(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, const BlockIslands* islands,
+                             std::vector<double>& bound) const {
   const Candidates& candidates = m_swept->for_ccd();
   const CollisionMesh& mesh = m_model.mesh;
-  const PointRows x0_rows = c.x, x1_rows = x1;  // each query reads its points from 8 places, not 24
+  const PointRows x0_rows = x0, x1_rows = x1;  // each query reads its points from 8 places, not 24
   const auto row = [](const PointRows& m, int i) -> Eigen::Vector3d { return m.row(i).transpose(); };
-  // Every query is bounded by the same t_max (1 for the point–triangle pairs, then their
-  // minimum for the edge–edge pairs), never by a time another query found: the time ACCD
-  // returns depends on its bound, so the step bound is then the same whatever the thread
-  // count and the split of the work (and min is exact in any order).
-  const auto smallest_time = [&](std::size_t count, double t_max, const auto& time_of) {
-    return tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, count, 256), t_max,
-        [&](const tbb::blocked_range<std::size_t>& r, double alpha) {
-          ccd::CcdSettings s;
-          s.t_max = t_max;
-          for (std::size_t k = r.begin(); k < r.end() && alpha > 0; ++k)  // α = 0: nothing can lower it
-            alpha = std::min(alpha, time_of(k, s));
-          return alpha;
-        },
-        [](double a, double b) { return std::min(a, b); });
-  };
-  const double alpha_vf = smallest_time(candidates.vertex_face.size(), 1.0, [&](std::size_t k, const ccd::CcdSettings& s) {
+  const auto vertex_face_time = [&](std::size_t k, const ccd::CcdSettings& s) {
     const auto [v, f] = candidates.vertex_face[k];
     return ccd::point_triangle_toi(row(x0_rows, v), row(x0_rows, mesh.F(f, 0)), row(x0_rows, mesh.F(f, 1)),
                                    row(x0_rows, mesh.F(f, 2)), row(x1_rows, v), row(x1_rows, mesh.F(f, 0)),
                                    row(x1_rows, mesh.F(f, 1)), row(x1_rows, mesh.F(f, 2)), s);
-  });
-  const double alpha_ee = smallest_time(candidates.edge_edge.size(), alpha_vf, [&](std::size_t k, const ccd::CcdSettings& s) {
+  };
+  const auto edge_edge_time = [&](std::size_t k, const ccd::CcdSettings& s) {
     const auto [ea, eb] = candidates.edge_edge[k];
     return ccd::edge_edge_toi(row(x0_rows, mesh.E(ea, 0)), row(x0_rows, mesh.E(ea, 1)), row(x0_rows, mesh.E(eb, 0)),
                               row(x0_rows, mesh.E(eb, 1)), row(x1_rows, mesh.E(ea, 0)), row(x1_rows, mesh.E(ea, 1)),
                               row(x1_rows, mesh.E(eb, 0)), row(x1_rows, mesh.E(eb, 1)), s);
-  });
-  return alpha_ee;
+  };
+  if (!islands) {
+    // Every query is bounded by the same t_max (1 for the point–triangle pairs, then their
+    // minimum for the edge–edge pairs), never by a time another query found: the time ACCD
+    // returns depends on its bound, so the step bound is then the same whatever the thread
+    // count and the split of the work (and min is exact in any order).
+    const auto smallest_time = [&](std::size_t count, double t_max, const auto& time_of) {
+      return tbb::parallel_reduce(
+          tbb::blocked_range<std::size_t>(0, count, 256), t_max,
+          [&](const tbb::blocked_range<std::size_t>& r, double alpha) {
+            ccd::CcdSettings s;
+            s.t_max = t_max;
+            for (std::size_t k = r.begin(); k < r.end() && alpha > 0; ++k)  // α = 0: nothing can lower it
+              alpha = std::min(alpha, time_of(k, s));
+            return alpha;
+          },
+          [](double a, double b) { return std::min(a, b); });
+    };
+    const double alpha_vf = smallest_time(candidates.vertex_face.size(), 1.0, vertex_face_time);
+    bound[0] = std::min(bound[0], smallest_time(candidates.edge_edge.size(), alpha_vf, edge_edge_time));
+    return;
+  }
+  // Per island, the same bounds as above: its point–triangle pairs with t_max = 1, then its
+  // edge–edge pairs with t_max = their minimum. Each pair's time is kept, then reduced in pair
+  // order, so the bounds do not depend on the thread count.
+  const auto island_of = [&](const std::array<int, 4>& vertices) {
+    for (int v : vertices) {
+      const int b = v < 0 ? -1 : m_vertex_block[std::size_t(v)];
+      if (b >= 0) return islands->island(b);
+    }
+    return -1;  // no vertex moves: nothing to bound
+  };
+  std::vector<double> t_max(bound.size(), 1.0);
+  const auto lower = [&](std::size_t count, const auto& vertices_of, const auto& time_of) {
+    std::vector<int> island(count);
+    std::vector<double> time(count, 1.0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+      ccd::CcdSettings s;
+      for (std::size_t k = r.begin(); k < r.end(); ++k) {
+        island[k] = island_of(vertices_of(k));
+        if (island[k] < 0) continue;
+        s.t_max = t_max[std::size_t(island[k])];
+        time[k] = s.t_max > 0 ? time_of(k, s) : 0.0;
+      }
+    });
+    for (std::size_t k = 0; k < count; ++k)
+      if (island[k] >= 0) t_max[std::size_t(island[k])] = std::min(t_max[std::size_t(island[k])], time[k]);
+  };
+  lower(candidates.vertex_face.size(), [&](std::size_t k) {
+    const auto [v, f] = candidates.vertex_face[k];
+    return std::array<int, 4>{v, mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)};
+  }, vertex_face_time);
+  lower(candidates.edge_edge.size(), [&](std::size_t k) {
+    const auto [ea, eb] = candidates.edge_edge[k];
+    return std::array<int, 4>{mesh.E(ea, 0), mesh.E(ea, 1), mesh.E(eb, 0), mesh.E(eb, 1)};
+  }, edge_edge_time);
+  for (std::size_t i = 0; i < bound.size(); ++i) bound[i] = std::min(bound[i], t_max[i]);
 }
 
 double BarrierTerm::relative_gap_change(const Configuration& c, const Eigen::MatrixX3d& dx) const {

@@ -57,6 +57,13 @@ class BarrierTerm final : public EnergyTerm {
   /// Conservative CCD over the straight-line motion x → x + dx; its broad phase (grown by
   /// d̂/2) is kept for update() on the same segment.
   double max_step(const Configuration& c, const Eigen::VectorXd& dq, const Eigen::MatrixX3d& dx) const override;
+  /// Joins the blocks of every candidate pair of the move's broad phase (grown by d̂/2, as
+  /// max_step's): pairs outside it stay farther than d̂ apart along the whole move. Keeps that
+  /// broad phase for max_step_per_island and update().
+  void join_coupled_blocks(const Configuration& c, const Eigen::MatrixX3d& dx, BlockIslands& islands) const override;
+  /// max_step's CCD on join_coupled_blocks' broad phase, each pair's time bounding its island.
+  void max_step_per_island(const Configuration& c, const Eigen::VectorXd& dq, const Eigen::MatrixX3d& dx,
+                           const BlockIslands& islands, std::vector<double>& bound) const override;
   /// IPC's adaptive rule: double κ (up to κ_max) while the smallest distance keeps shrinking
   /// below 1e-9 × diagonal; true when κ changed.
   bool end_iteration(const Configuration& c) override;
@@ -86,6 +93,10 @@ class BarrierTerm final : public EnergyTerm {
   double dhat() const { return m_settings.dhat; }
 
  private:
+  /// The CCD bound of the segment x0 → x1 over m_swept's candidates, for one island (`islands`
+  /// null, `bound` of size 1) or for each.
+  void ccd_bounds(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, const BlockIslands* islands,
+                  std::vector<double>& bound) const;
   /// scale × stencil k's Newton Hessian at c, as blocks of J^T H J.
   void stencil_hessian(const Configuration& c, size_t k, double scale, StencilHessian& out) const;
   const Model& m_model;
@@ -97,6 +108,7 @@ class BarrierTerm final : public EnergyTerm {
   bool m_balanced = false;
   std::vector<ContactConstraint> m_constraints;
   Eigen::MatrixX3d m_constraints_at;  ///< the surface m_constraints were built at
+  std::vector<int> m_vertex_block;  ///< vertex_block of each surface vertex
   /// The run's broad phase, which remembers body pairs' primitive pairs between calls.
   mutable BroadPhase m_broad_phase;
   /// Candidates of the last direction max_step bounded, reused by update() on that segment.

@@ -109,4 +109,10 @@ void DampingTerm::add_hessian(const Configuration&, BlockHessian& H) const {
   for (const JointElement& j : m_joints) j.vectors.scatter_hessian(j.W.transpose() * j.W, H);
 }
 
+void DampingTerm::join_coupled_blocks(const Configuration&, const Eigen::MatrixX3d&, BlockIslands& islands) const {
+  if (!m_joints.empty()) islands.join_all();
+  for (const ContactElement& e : m_contacts)
+    for (int s = 1; s < e.J.slots; ++s) islands.join(e.J.block[0], e.J.block[std::size_t(s)]);
+}
+
 }  // namespace stiffsoft

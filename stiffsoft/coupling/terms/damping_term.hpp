@@ -58,6 +58,9 @@ class DampingTerm final : public EnergyTerm {
   void add_gradient(const Configuration& c, Eigen::VectorXd& g) const override;
   /// See EnergyTerm::add_hessian.
   void add_hessian(const Configuration& c, BlockHessian& H) const override;
+  /// Joins the blocks of every damped contact, and every block when a joint is damped: see
+  /// EnergyTerm::join_coupled_blocks.
+  void join_coupled_blocks(const Configuration& c, const Eigen::MatrixX3d& dx, BlockIslands& islands) const override;
 
  private:
   struct ContactElement {

@@ -118,4 +118,9 @@ std::vector<int> ElasticityTerm::inverted_per_body(const Eigen::VectorXd& q) con
   return counts;
 }
 
+void ElasticityTerm::join_coupled_blocks(const Configuration&, const Eigen::MatrixX3d&, BlockIslands& islands) const {
+  for (const SoftBody& body : m_bodies)
+    for (const auto& [a, b] : body.pair_blocks) islands.join(a, b);
+}
+
 }  // namespace stiffsoft

@@ -25,6 +25,8 @@ class ElasticityTerm final : public EnergyTerm {
   void add_gradient(const Configuration& c, Eigen::VectorXd& g) const override;
   /// See EnergyTerm::add_hessian.
   void add_hessian(const Configuration& c, BlockHessian& H) const override;
+  /// Joins the nodes of every element: see EnergyTerm::join_coupled_blocks.
+  void join_coupled_blocks(const Configuration& c, const Eigen::MatrixX3d& dx, BlockIslands& islands) const override;
   /// True when the model has no soft body (the term can be left out).
   bool empty() const { return m_bodies.empty(); }
   /// Von Mises stress of every tetrahedron of the model, in Model::nodes.T order (Pa).

@@ -5,7 +5,11 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
+#include <vector>
+
 #include <stiffsoft/coupling/model/block_hessian.hpp>
+#include <stiffsoft/coupling/model/block_islands.hpp>
 
 namespace stiffsoft {
 
@@ -34,6 +38,22 @@ class EnergyTerm {
   virtual double max_step(const Configuration&, const Eigen::VectorXd& /*dq*/,
                           const Eigen::MatrixX3d& /*dx*/) const {
     return 1.0;
+  }
+  /// Joins in `islands` the DOF blocks this term couples anywhere on the move dx from c (a
+  /// direction's or a chord's surface step): blocks it leaves in different islands share none of
+  /// its stencils at any point of that move. The default joins every block, which is always
+  /// right and gives every block the same step length.
+  virtual void join_coupled_blocks(const Configuration&, const Eigen::MatrixX3d& /*dx*/, BlockIslands& islands) const {
+    islands.join_all();
+  }
+  /// max_step by island: lowers bound[i] to the largest α such that q + t·dq is admissible for
+  /// this term's stencils in island i for all t ∈ [0, α]. Called after every term's
+  /// join_coupled_blocks for the same move, with `islands` numbered. The default lowers every
+  /// island's bound to max_step.
+  virtual void max_step_per_island(const Configuration& c, const Eigen::VectorXd& dq, const Eigen::MatrixX3d& dx,
+                                   const BlockIslands& /*islands*/, std::vector<double>& bound) const {
+    const double alpha = max_step(c, dq, dx);
+    for (double& b : bound) b = std::min(b, alpha);
   }
   /// Called with each Newton direction dq (surface step dx) and the Hessian H it was solved
   /// with. A term whose Hessian model should depend on where the step goes (friction: a slide

@@ -31,6 +31,8 @@ class FrictionTerm final : public EnergyTerm {
   /// See EnergyTerm::add_hessian: the PSD-projected exact Hessian of every stencil, or its
   /// majorizer on the stencils revise_hessian has switched to it since the last lag.
   void add_hessian(const Configuration& c, BlockHessian& H) const override;
+  /// Joins the blocks of every lagged stencil: see EnergyTerm::join_coupled_blocks.
+  void join_coupled_blocks(const Configuration& c, const Eigen::MatrixX3d& dx, BlockIslands& islands) const override;
   /// On every stencil whose slide the full step dx would reverse (contact/friction.hpp,
   /// step_reverses_slide), replaces its Hessian in H by the majorizer; true if any. Such a
   /// stencil keeps the majorizer in add_hessian for the rest of the lag (it bounds friction's

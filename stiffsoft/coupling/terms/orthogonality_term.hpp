@@ -21,6 +21,8 @@ class OrthogonalityTerm final : public EnergyTerm {
   void add_gradient(const Configuration& c, Eigen::VectorXd& g) const override;
   /// See EnergyTerm::add_hessian.
   void add_hessian(const Configuration& c, BlockHessian& H) const override;
+  /// Couples no two blocks: see EnergyTerm::join_coupled_blocks.
+  void join_coupled_blocks(const Configuration&, const Eigen::MatrixX3d&, BlockIslands&) const override {}
   /// True when no dynamic affine body exists (the term can be left out).
   bool empty() const { return m_bodies.empty(); }
 
