@@ -81,6 +81,10 @@ TEST(BlockIslands, JoinsNumbersAndScalesByIsland) {
   one.number();
   EXPECT_EQ(one.count(), 1);
   for (int b = 0; b < 5; ++b) EXPECT_EQ(one.island(b), 0);
+
+  BlockIslands none(0);  // no DOF blocks: still one island, so that Newton has a bound
+  none.number();
+  EXPECT_EQ(none.count(), 1);
 }
 
 TEST(BlockIslands, ScalesEachBlockByItsIslandAndIgnoresFixedVertices) {

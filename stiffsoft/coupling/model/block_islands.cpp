@@ -40,8 +40,8 @@ void BlockIslands::join_all() { m_all = true; }
 void BlockIslands::number() {
   const std::size_t n = m_parent.size();
   m_island.assign(n, 0);
-  m_count = n ? 1 : 0;
-  if (m_all) return;
+  m_count = 1;  // also without blocks: one (empty) island, so that there is always a bound
+  if (m_all || n == 0) return;
   std::vector<int> of_root(n, -1);
   m_count = 0;
   for (std::size_t b = 0; b < n; ++b) {

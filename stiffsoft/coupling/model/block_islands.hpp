@@ -25,8 +25,8 @@ class BlockIslands {
   void join_blocks(const std::array<int, 4>& blocks);
   /// Joins every block into one island.
   void join_all();
-  /// Numbers the islands 0 … count() − 1 (in the order of their first block); call after the
-  /// last join and before island().
+  /// Numbers the islands 0 … count() − 1 (in the order of their first block; one island when
+  /// there is no block); call after the last join and before island().
   void number();
   /// Number of islands (after number()).
   int count() const { return m_count; }
