@@ -111,8 +111,7 @@ void DampingTerm::add_hessian(const Configuration&, BlockHessian& H) const {
 
 void DampingTerm::join_coupled_blocks(const Configuration&, const Eigen::MatrixX3d&, BlockIslands& islands) const {
   if (!m_joints.empty()) islands.join_all();
-  for (const ContactElement& e : m_contacts)
-    for (int s = 1; s < e.J.slots; ++s) islands.join(e.J.block[0], e.J.block[std::size_t(s)]);
+  for (const ContactElement& e : m_contacts) islands.join_blocks(e.J.block);
 }
 
 }  // namespace stiffsoft

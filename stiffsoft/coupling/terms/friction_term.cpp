@@ -215,8 +215,7 @@ Eigen::MatrixX3d FrictionTerm::vertex_forces(const Configuration& c) const {
 }
 
 void FrictionTerm::join_coupled_blocks(const Configuration&, const Eigen::MatrixX3d&, BlockIslands& islands) const {
-  for (const StencilJacobian& J : m_jacobians)
-    for (int s = 1; s < J.slots; ++s) islands.join(J.block[0], J.block[std::size_t(s)]);
+  for (const StencilJacobian& J : m_jacobians) islands.join_blocks(J.block);
 }
 
 }  // namespace stiffsoft
