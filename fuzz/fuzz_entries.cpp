@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <system_error>
 
 #include <stiffsoft/meshing/mass_moments.hpp>
 #include <stiffsoft/meshing/mesh_checks.hpp>
@@ -27,14 +28,19 @@ ElementLimits fuzz_limits() {
   return limits;
 }
 
-/// A per-process folder for the scratch files (two fuzzers may run at once).
+/// A per-process folder for the scratch files (two fuzzers may run at once), removed when the
+/// process exits.
 std::filesystem::path scratch_folder() {
-  static const std::filesystem::path folder = [] {
-    auto path = std::filesystem::temp_directory_path() / ("stiffsoft-fuzz-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(path);
-    return path;
-  }();
-  return folder;
+  struct Folder {
+    std::filesystem::path path = std::filesystem::temp_directory_path() / ("stiffsoft-fuzz-" + std::to_string(::getpid()));
+    Folder() { std::filesystem::create_directories(path); }
+    ~Folder() {
+      std::error_code ignored;  // already gone
+      std::filesystem::remove_all(path, ignored);
+    }
+  };
+  static const Folder folder;
+  return folder.path;
 }
 
 std::filesystem::path write_scratch(std::span<const std::uint8_t> bytes, const std::string& extension) {

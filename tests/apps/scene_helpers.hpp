@@ -5,13 +5,13 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include <stiffsoft/scene/make_simulation.hpp>
 #include <stiffsoft/scene/scene_loader.hpp>
+#include <temporary_folder.hpp>
 
 namespace stiffsoft::testing {
 
@@ -21,14 +21,9 @@ inline Simulation simulate(const std::string& json, const std::string& name = "i
   return Simulation(std::move(p.model), p.settings);
 }
 
-/// A fresh empty folder under the system's temporary directory.
-inline std::filesystem::path fresh_folder(const std::string& stem) {
-  std::random_device rd;
-  const auto dir = std::filesystem::temp_directory_path() / (stem + "_" + std::to_string(rd()));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+/// A fresh empty folder under the system's temporary directory, removed when the test program
+/// exits.
+inline std::filesystem::path fresh_folder(const std::string& stem) { return temporary_folder(stem); }
 
 /// Runs the stiffsoft binary with `args`; returns its exit code; output goes to `log`.
 inline int run_stiffsoft(const std::string& args, const std::filesystem::path& log) {

@@ -6,12 +6,12 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <random>
 #include <sstream>
 
 #include <stiffsoft/io/body_state_writer.hpp>
 #include <stiffsoft/scene/make_simulation.hpp>
 #include <stiffsoft/scene/scene_loader.hpp>
+#include <temporary_folder.hpp>
 
 using namespace stiffsoft;
 
@@ -46,9 +46,7 @@ TEST(BodyStateWriter, WritesPositionRotationVelocitiesAndEnergy) {
                 "velocity": [0.3, 0, 0], "angular_velocity": [0, 0, 2]}]})";
   SceneSimulation run = make_simulation(load_scene_from_string(json, STIFFSOFT_SOURCE_DIR, "spin.json", "spin"), "spin.json");
   Simulation& sim = run.simulation;
-  std::random_device rd;
-  const auto dir = std::filesystem::temp_directory_path() / ("bodies_csv_" + std::to_string(rd()));
-  std::filesystem::create_directories(dir);
+  const auto dir = stiffsoft::testing::temporary_folder("bodies_csv");
   {
     BodyStateWriter writer(dir / "bodies.csv");
     writer.add_state(0, sim);

@@ -5,11 +5,11 @@
 
 #include <filesystem>
 #include <fstream>
-#include <random>
 #include <set>
 
 #include <stiffsoft/study/study_spec.hpp>
 #include <stiffsoft/study/sweep.hpp>
+#include <temporary_folder.hpp>
 
 using namespace stiffsoft::study;
 
@@ -17,10 +17,7 @@ namespace {
 
 /// Writes `text` to a fresh study file next to the shipped study scenes' folder and returns it.
 std::filesystem::path study_file(const std::string& text) {
-  std::random_device rd;
-  const auto dir = std::filesystem::temp_directory_path() / ("study_spec_" + std::to_string(rd()));
-  std::filesystem::create_directories(dir);
-  const auto file = dir / "s.json";
+  const auto file = stiffsoft::testing::temporary_folder("study_spec") / "s.json";
   std::ofstream(file) << text;
   return file;
 }
