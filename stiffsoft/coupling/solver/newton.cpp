@@ -193,16 +193,18 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
     const bool by_island = settings.island_line_search && !basis;
     const auto move_bounds = [&](const Eigen::VectorXd& dq, const Eigen::MatrixX3d& dx_dq) {
       MoveBounds m{BlockIslands(int(model.blocks.size())), {}, 1.0};
-      if (!by_island) m.islands.join_all();
-      for (const EnergyTerm* t : terms)
-        if (by_island) t->join_coupled_blocks(c, dx_dq, m.islands);
-      m.islands.number();
-      m.bound.assign(std::size_t(m.islands.count()), 1.0);
-      for (const EnergyTerm* t : terms)  // by island: on the broad phases the joins built
-        if (by_island)
-          t->max_step_per_island(c, dq, dx_dq, m.islands, m.bound);
-        else
-          m.bound[0] = std::min(m.bound[0], t->max_step(c, dq, dx_dq));
+      if (by_island) {
+        for (const EnergyTerm* t : terms) t->join_coupled_blocks(c, dx_dq, m.islands);
+        m.islands.number();
+        m.bound.assign(std::size_t(m.islands.count()), 1.0);
+        // On the broad phases the joins built.
+        for (const EnergyTerm* t : terms) t->max_step_per_island(c, dq, dx_dq, m.islands, m.bound);
+      } else {
+        m.islands.join_all();
+        m.islands.number();
+        m.bound.assign(1, 1.0);
+        for (const EnergyTerm* t : terms) m.bound[0] = std::min(m.bound[0], t->max_step(c, dq, dx_dq));
+      }
       m.smallest = *std::min_element(m.bound.begin(), m.bound.end());
       return m;
     };
