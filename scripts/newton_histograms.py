@@ -8,7 +8,7 @@
 The argument is a stats.csv or the run folder that holds one. Prints:
   - mean / median / p90 / max Newton iterations per step, and a text histogram;
   - line-search trials per iteration (line_search_steps / newton_iterations, summed over the
-    steps) overall, in the slowest 10 % of steps and in the rest, and in the steps that took
+    steps) and halvings per iteration (line_search_halvings, where stats.csv has it) overall, in the slowest 10 % of steps and in the rest, and in the steps that took
     one iteration (there every trial belongs to the final, converging iteration);
   - the steps with a CCD-limited iteration (smallest_ccd_step < 1): how many, their mean
     iterations and trials per iteration against the other steps;
@@ -117,6 +117,10 @@ def summarise(path, c, out=sys.stdout):
 
     p("\n  line-search trials per iteration (sum of trials / sum of iterations)")
     p(f"  overall: {ratio(ls.sum(), it.sum()):.2f}   ({int(ls.sum())} trials, {int(it.sum())} iterations)")
+    if "line_search_halvings" in c:  # stats.csv since session 40
+        halvings = c["line_search_halvings"]
+        p(f"  halvings per iteration: {ratio(halvings.sum(), it.sum()):.2f}   ({int(halvings.sum())} halvings; "
+          "the other extra trials retry a geodesic trial's α on the straight line)")
     k10 = max(1, int(math.ceil(0.1 * n)))
     slow = np.zeros(n, bool)
     slow[np.argsort(-it, kind="mergesort")[:k10]] = True

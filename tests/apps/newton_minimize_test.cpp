@@ -1,7 +1,7 @@
 /// @file newton_minimize on energies with known minimisers, over a one-body model (one affine
 /// body, 12 DOFs): a convex quadratic is minimised by the first Newton step, and a strictly
 /// convex non-quadratic energy converges to its minimiser with the energy decreasing at every
-/// accepted iteration.
+/// accepted iteration, and the line search counts its halvings.
 
 #include <gtest/gtest.h>
 
@@ -108,6 +108,32 @@ class CoshTerm final : public EnergyTerm {
   int m_block;
 };
 
+/// E(q) = Σ_i √(1 + (q_i − c_i)²): strictly convex, minimised at q = c, and Newton's full step
+/// −d (1 + d²) from an offset d overshoots the minimiser in every coordinate.
+class PseudoHuberTerm final : public EnergyTerm {
+ public:
+  /// The term on DOF block `block`.
+  PseudoHuberTerm(Eigen::VectorXd c, int block) : m_c(std::move(c)), m_block(block) {}
+  /// See EnergyTerm::name.
+  const char* name() const override { return "pseudo-Huber"; }
+  /// See EnergyTerm::value.
+  double value(const Configuration& c) const override { return (1 + (c.q - m_c).array().square()).sqrt().sum(); }
+  /// See EnergyTerm::add_gradient.
+  void add_gradient(const Configuration& c, Eigen::VectorXd& g) const override {
+    const Eigen::ArrayXd d = (c.q - m_c).array();
+    g += (d / (1 + d.square()).sqrt()).matrix();
+  }
+  /// See EnergyTerm::add_hessian.
+  void add_hessian(const Configuration& c, BlockHessian& H) const override {
+    const Eigen::ArrayXd d = (c.q - m_c).array();
+    H.add(m_block, m_block, Eigen::MatrixXd((1 + d.square()).pow(-1.5).matrix().asDiagonal()));
+  }
+
+ private:
+  Eigen::VectorXd m_c;
+  int m_block;
+};
+
 }  // namespace
 
 TEST(NewtonMinimize, QuadraticIsMinimisedByTheFirstNewtonStep) {
@@ -209,7 +235,8 @@ TEST(NewtonMinimize, StrictlyConvexEnergyConvergesMonotonicallyToItsMinimiser) {
   // Quadratic convergence: the last step was < 1e-8, so the error after it is far smaller.
   EXPECT_LT((q - c).lpNorm<Eigen::Infinity>(), 1e-8);
   EXPECT_NEAR(report.energy, w.sum(), 1e-12 * w.sum());
-  // The line search only accepts decrease; before the minimum is reached (gap to E(c) above
+  // The line search accepts no rise beyond round-off (the converged direction's step, below
+  // ε_d, is taken without the test); before the minimum is reached (gap to E(c) above
   // round-off) every accepted iterate lowers E strictly.
   ASSERT_FALSE(term.energies.empty());
   double previous = E0;
@@ -233,4 +260,26 @@ TEST(NewtonMinimize, TakesTheConvergedStepAsItsFirstTrial) {
     EXPECT_EQ(s.newton.iterations, 1) << "step " << s.step;
     EXPECT_EQ(s.newton.line_search_steps, 1) << "step " << s.step;
   }
+}
+
+TEST(NewtonMinimize, CountsTheLineSearchHalvings) {
+  // On the straight line every trial after an iteration's first halves its step: trials =
+  // iterations + halvings. The pseudo-Huber energy's full Newton steps overshoot, so there are
+  // halvings to count.
+  const Model& model = one_body_model();
+  std::mt19937 rng(5);
+  const Eigen::VectorXd c = model.initial_q();
+  PseudoHuberTerm term(c, model.bodies[0].block);
+  const std::vector<EnergyTerm*> terms{&term};
+  const std::unique_ptr<LinearSolver> solver = make_linear_solver("cholmod");
+  PhaseTimes times;
+  Eigen::VectorXd q = c + 2.0 * random_vector(rng, 1.0);
+  NewtonSettings settings;
+  settings.geodesic_line_search = false;
+  settings.tolerance = 1e-6;
+  const NewtonReport report = newton_minimize(model, terms, q, *solver, settings, times);
+  ASSERT_TRUE(report.converged) << report.failure;
+  EXPECT_LT((q - c).lpNorm<Eigen::Infinity>(), 1e-8);
+  EXPECT_GT(report.line_search_halvings, 0);
+  EXPECT_EQ(report.line_search_steps, report.iterations + report.line_search_halvings);
 }

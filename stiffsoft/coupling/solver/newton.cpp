@@ -63,6 +63,7 @@ void accumulate(NewtonReport& total, const NewtonReport& next) {
   total.converged = next.converged;
   total.iterations += next.iterations;
   total.line_search_steps += next.line_search_steps;
+  total.line_search_halvings += next.line_search_halvings;
   total.smallest_ccd_step = std::min(total.smallest_ccd_step, next.smallest_ccd_step);
   total.ccd_limited_iterations += next.ccd_limited_iterations;
   total.revised_directions += next.revised_directions;
@@ -281,6 +282,7 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
       }
       alpha *= 0.5;
       for (double& s : scale) s *= 0.5;
+      ++report.line_search_halvings;
     }
     if (accepted) {
       q.swap(q_trial);

@@ -10,6 +10,7 @@ const std::vector<StepStatsColumn>& step_stats_columns() {
       {"linear_iterations", [](const StepStats& s) { return double(s.newton.linear_iterations); }},
       {"linear_fallbacks", [](const StepStats& s) { return double(s.newton.linear_fallbacks); }},
       {"line_search_steps", [](const StepStats& s) { return double(s.newton.line_search_steps); }},
+      {"line_search_halvings", [](const StepStats& s) { return double(s.newton.line_search_halvings); }},
       {"smallest_ccd_step", [](const StepStats& s) { return s.newton.smallest_ccd_step; }},
       {"ccd_limited_iterations", [](const StepStats& s) { return double(s.newton.ccd_limited_iterations); }},
       {"revised_directions", [](const StepStats& s) { return double(s.newton.revised_directions); }},
