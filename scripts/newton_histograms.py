@@ -8,8 +8,9 @@
 The argument is a stats.csv or the run folder that holds one. Prints:
   - mean / median / p90 / max Newton iterations per step, and a text histogram;
   - line-search trials per iteration (line_search_steps / newton_iterations, summed over the
-    steps) and halvings per iteration (line_search_halvings, where stats.csv has it) overall, in the slowest 10 % of steps and in the rest, and in the steps that took
-    one iteration (there every trial belongs to the final, converging iteration);
+    steps) overall, in the slowest 10 % of steps and in the rest, and in the steps that took
+    one iteration; and halvings per iteration overall (line_search_halvings, where stats.csv
+    has it);
   - the steps with a CCD-limited iteration (smallest_ccd_step < 1): how many, their mean
     iterations and trials per iteration against the other steps;
   - the steps whose κ differs from the previous row's (κ is reported at the end of a step,
