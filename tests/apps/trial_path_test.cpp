@@ -123,25 +123,6 @@ TEST(TrialPath, TurnsABodyWithoutStretchingIt) {
   }
 }
 
-TEST(TrialPath, PutsEachBlockAtItsOwnPoint) {
-  // Per block, the point of the path at that block's α: body a turned at α = 0.3, body b at 0.8.
-  const Model& model = two_box_model();
-  Eigen::VectorXd q = model.initial_q();
-  set_affine(model, 1, Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, -1).normalized()).toRotationMatrix(), q);
-  const Eigen::VectorXd p = turn(model, q, Eigen::Vector3d(0.4, 0.1, -0.2), Eigen::Vector3d(0.02, -0.05, 0.01));
-  const TrialPath path(model, q, p, true, 0);
-  ASSERT_FALSE(path.straight());
-  std::vector<double> alpha(model.blocks.size());
-  alpha[std::size_t(model.bodies[1].block)] = 0.3;
-  alpha[std::size_t(model.bodies[2].block)] = 0.8;
-  Eigen::VectorXd mixed, at;
-  path.point(model, alpha, mixed);
-  for (int b : {1, 2}) {
-    path.point(alpha[std::size_t(model.bodies[b].block)], at);
-    EXPECT_EQ(mixed.segment<12>(model.bodies[b].dof), at.segment<12>(model.bodies[b].dof)) << "body " << b;
-  }
-}
-
 namespace {
 
 /// A 0.1 m box turned onto a corner, dropped 0.3 m onto a floor, κ = 1e10 Pa, h = 1/240 s.

@@ -213,11 +213,11 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
     };
     // Trials are q + α p, or the geodesic path's q(α), for α = 1, ½, ¼, … A straight trial
     // moves each island by its own multiple of p, starting at its CCD bound; a geodesic trial
-    // moves each island to q(α), or where CCD cuts its chord (the segment linear CCD checks
-    // exactly) at βᵢ, to the path's point q(α βᵢ), whose own chord is bounded again. Once a
-    // geodesic trial does not lower E (or CCD lets some island's chord not move at all), the
-    // search goes on along the straight line from the same α: never worse than the line where
-    // the energy is not the orthogonality's (a turn far from a rotation, a test energy).
+    // moves each island along its part of the chord from q to q(α), cut to that island's CCD
+    // bound of the chord (the segment linear CCD checks exactly). Once a geodesic trial does not
+    // lower E (or CCD lets some island's chord not move at all), the search goes on along the
+    // straight line from the same α: never worse than the line where the energy is not the
+    // orthogonality's (a turn far from a rotation, a test energy).
     const TrialPath path(model, q, p, settings.geodesic_line_search && !basis, std::abs(g.dot(p)));
     bool straight = path.straight();
     std::optional<MoveBounds> line;  // p's bounds, once needed
@@ -265,16 +265,7 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
           go_straight(alpha);
           if (alpha <= 0) break;
         } else if (bound < 1) {
-          // CCD cut some island's chord, and part of a chord between two turns is no turn: it
-          // stretches the island's turning bodies. So each island goes to its own point of the
-          // path instead, q(α βᵢ) for its bound βᵢ, and the chord to that point is bounded again.
-          std::vector<double> own(model.blocks.size());
-          for (std::size_t b = 0; b < own.size(); ++b)
-            own[b] = alpha * chord_bounds->bound[std::size_t(chord_bounds->islands.island(int(b)))];
-          path.point(model, own, q_trial);
-          chord = q_trial - q;
-          chord_bounds = move_bounds(chord, model.surface_step(chord));
-          if (chord_bounds->smallest < 1) q_trial = q + chord_bounds->islands.scaled(model, chord, chord_bounds->bound);
+          q_trial = q + chord_bounds->islands.scaled(model, chord, chord_bounds->bound);
         }
       }
       if (straight) q_trial = q + line->islands.scaled(model, p, scale);

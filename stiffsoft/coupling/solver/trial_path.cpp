@@ -20,27 +20,18 @@ TrialPath::TrialPath(const Model& model, const Eigen::VectorXd& q, const Eigen::
     if (w.squaredNorm() == 0 || stretch < decrease) continue;
     const Eigen::Matrix3d A = abd::affine_matrix(q_b);
     const Eigen::Matrix3d M = abd::affine_matrix(p_b) * A.inverse();
-    m_turns.push_back({body.dof, body.block, A, w, 0.5 * (M + M.transpose())});
+    m_turns.push_back({body.dof, A, w, 0.5 * (M + M.transpose())});
   }
 }
 
 void TrialPath::point(double alpha, Eigen::VectorXd& out) const {
   out = m_q + alpha * m_p;
-  for (const Turn& t : m_turns) turn(t, alpha, out);
-}
-
-void TrialPath::point(const Model& model, const std::vector<double>& alpha, Eigen::VectorXd& out) const {
-  out = m_q;
-  for (std::size_t b = 0; b < model.blocks.size(); ++b)
-    out.segment(model.blocks[b].offset, model.blocks[b].size) += alpha[b] * m_p.segment(model.blocks[b].offset, model.blocks[b].size);
-  for (const Turn& t : m_turns) turn(t, alpha[std::size_t(t.block)], out);
-}
-
-void TrialPath::turn(const Turn& t, double alpha, Eigen::VectorXd& out) {
-  const double angle = alpha * t.w.norm();
-  const Eigen::Matrix3d R = Eigen::AngleAxisd(angle, t.w.normalized()).toRotationMatrix();
-  const Eigen::Matrix3d A = R * (Eigen::Matrix3d::Identity() + alpha * t.S) * t.A;
-  out.segment<12>(t.dof) = abd::make_q(out.segment<3>(t.dof), A);
+  for (const Turn& t : m_turns) {
+    const double angle = alpha * t.w.norm();
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(angle, t.w.normalized()).toRotationMatrix();
+    const Eigen::Matrix3d A = R * (Eigen::Matrix3d::Identity() + alpha * t.S) * t.A;
+    out.segment<12>(t.dof) = abd::make_q(out.segment<3>(t.dof), A);
+  }
 }
 
 }  // namespace stiffsoft

@@ -30,21 +30,15 @@ class TrialPath {
 
   /// q(α) into out (resized to q's size).
   void point(double alpha, Eigen::VectorXd& out) const;
-  /// Each DOF block b at its own point of the path, q_b(alpha[b]) (one entry per block), into
-  /// out: Newton's geodesic trial for islands that CCD cut at different fractions.
-  void point(const Model& model, const std::vector<double>& alpha, Eigen::VectorXd& out) const;
 
  private:
   /// One affine body's turn: its DOF offset, A, the axis-angle vector w of W, and S.
   struct Turn {
-    int dof, block;
+    int dof;
     Eigen::Matrix3d A;
     Eigen::Vector3d w;
     Eigen::Matrix3d S;
   };
-  /// Sets the turning body's A in out (its translation already moved) to its point at α.
-  static void turn(const Turn& t, double alpha, Eigen::VectorXd& out);
-
   const Eigen::VectorXd& m_q;
   const Eigen::VectorXd& m_p;
   std::vector<Turn> m_turns;
