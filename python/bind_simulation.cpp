@@ -195,7 +195,7 @@ void bind_simulation(py::module_& m) {
       .def_readonly("converged", &NewtonReport::converged, "the stopping rule was met")
       .def_readonly("iterations", &NewtonReport::iterations, "Newton iterations (linear solves)")
       .def_readonly("line_search_steps", &NewtonReport::line_search_steps, "energy evaluations in line searches")
-      .def_readonly("line_search_halvings", &NewtonReport::line_search_halvings, "trials that halved the step")
+      .def_readonly("line_search_halvings", &NewtonReport::line_search_halvings, "times the line search halved its step")
       .def_readonly("smallest_ccd_step", &NewtonReport::smallest_ccd_step, "smallest step bound from CCD")
       .def_readonly("ccd_limited_iterations", &NewtonReport::ccd_limited_iterations, "iterations whose CCD bound was < 1")
       .def_readonly("revised_directions", &NewtonReport::revised_directions, "directions solved again after friction revised its Hessian")

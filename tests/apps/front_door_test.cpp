@@ -108,7 +108,7 @@ TEST(FrontDoor, SettingsBuiltInCodeAreValidatedWithTheSettingsName) {
 }
 
 TEST(FrontDoor, TheRecorderWritesWhatStiffsoftRunWrites) {
-  const fs::path out = stiffsoft::testing::fresh_folder("stiffsoft_recorder");
+  const fs::path out = stiffsoft::testing::temporary_folder("stiffsoft_recorder");
   SceneSimulation run = make_simulation(box_on_slab());
   {
     Recorder recorder(out, run.scene, run.simulation);
@@ -127,7 +127,7 @@ TEST(FrontDoor, TheRecorderWritesWhatStiffsoftRunWrites) {
 }
 
 TEST(FrontDoor, TheRecorderRefusesAnOutputFolderThatIsAFile) {
-  const fs::path dir = stiffsoft::testing::fresh_folder("stiffsoft_recorder_file");
+  const fs::path dir = stiffsoft::testing::temporary_folder("stiffsoft_recorder_file");
   const fs::path file = dir / "taken";
   std::ofstream(file) << "not a folder";
   SceneSimulation run = make_simulation(box_on_slab());

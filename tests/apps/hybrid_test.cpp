@@ -120,7 +120,7 @@ namespace {
 
 /// Runs a broken scene of tests/apps/data; expects exit code 2 and every needle in the log.
 void expect_soft_scene_error(const std::string& file, const std::vector<std::string>& needles) {
-  const fs::path out = fresh_folder("stiffsoft_broken_soft");
+  const fs::path out = temporary_folder("stiffsoft_broken_soft");
   const fs::path scene = fs::path(STIFFSOFT_SOURCE_DIR) / "tests/apps/data" / file;
   EXPECT_EQ(run_stiffsoft("run " + scene.string() + " -o " + (out / "o").string(), out / "run.log"), 2);
   const std::string log = read_text(out / "run.log");

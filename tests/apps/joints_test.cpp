@@ -457,7 +457,7 @@ TEST(JointForces, HangingPendulumCarriesItsWeight) {
 TEST(JointForces, HangingPendulumsParaViewFrameCarriesItsWeight) {
   // `stiffsoft run` writes the joints as PolyData beside the bodies' frames: the pivot's two
   // ends at the origin, its force on the bob m g upwards, no limit (gap NaN).
-  const std::filesystem::path out = stiffsoft::testing::fresh_folder("stiffsoft_joint_vtp");
+  const std::filesystem::path out = stiffsoft::testing::temporary_folder("stiffsoft_joint_vtp");
   {
     std::ofstream scene(out / "hang.json");
     scene << pendulum("ball", "backward_euler", 0.01, 1, 1.0, 0.0);

@@ -104,7 +104,7 @@ TEST(LinearSolverChoice, CholmodAndPetscGamgTrajectoriesAgreeWithinNewtonsTolera
 }
 
 TEST(LinearSolverChoice, PetscOptionsOnTheCommandLineReachPetsc) {
-  const fs::path dir = fresh_folder("stiffsoft_petsc_options");
+  const fs::path dir = temporary_folder("stiffsoft_petsc_options");
   const fs::path scene = scene_with_solver("cube_on_mattress", "petsc", dir);
   ASSERT_EQ(run_stiffsoft("run " + scene.string() + " -o " + (dir / "out").string() +
                               " --steps 2 -ksp_type minres -ksp_monitor -log_view",
@@ -123,7 +123,7 @@ TEST(LinearSolverChoice, PetscOptionsOnTheCommandLineReachPetsc) {
 // within Newton's tolerance. Only rank 0 writes.
 TEST(LinearSolverChoice, TwoMpiRanksReproduceTheSerialRun) {
   if (std::system("command -v mpirun > /dev/null 2>&1") != 0) GTEST_SKIP() << "no mpirun";
-  const fs::path dir = fresh_folder("stiffsoft_mpi_run");
+  const fs::path dir = temporary_folder("stiffsoft_mpi_run");
   const fs::path scene = scene_with_solver("cube_on_mattress", "petsc:cg:icc", dir);
   const int steps = 10;
   const std::string args = "run " + scene.string() + " --steps " + std::to_string(steps) + " -o ";

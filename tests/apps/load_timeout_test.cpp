@@ -11,7 +11,7 @@ namespace stiffsoft {
 namespace {
 
 TEST(LoadTimeout, AnEndlessGeoScriptIsStoppedWithExitCode2AndAnErrorNamingTheScene) {
-  const auto out = testing::fresh_folder("endless_script");
+  const auto out = testing::temporary_folder("endless_script");
   const auto start = std::chrono::steady_clock::now();
   const int code = testing::run_stiffsoft("run " + std::string(STIFFSOFT_SOURCE_DIR) +
                                               "/tests/apps/data/endless_script.json -o " + (out / "run").string() +

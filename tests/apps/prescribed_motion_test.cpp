@@ -102,7 +102,7 @@ TEST(PrescribedMotion, TheRigidityBoundIsChecked) {
 }
 
 TEST(PrescribedMotion, TheCommandStopsWithExitCode3AndKeepsItsFrames) {
-  const auto out = testing::fresh_folder("crushed_cube");
+  const auto out = testing::temporary_folder("crushed_cube");
   const int code = testing::run_stiffsoft(
       "run " + std::string(STIFFSOFT_SOURCE_DIR) + "/tests/apps/data/crushed_cube.json -o " + (out / "run").string(),
       out / "log.txt");
@@ -116,7 +116,7 @@ TEST(PrescribedMotion, TheCommandStopsWithExitCode3AndKeepsItsFrames) {
 }
 
 TEST(PrescribedMotion, APressDrivenThroughASoftCubeStopsWithAnErrorNamingItAndLogsTheInversions) {
-  const auto out = testing::fresh_folder("press_through");
+  const auto out = testing::temporary_folder("press_through");
   const int code = testing::run_stiffsoft("run " + std::string(STIFFSOFT_SOURCE_DIR) +
                                               "/tests/apps/data/press_through_soft_cube.json -o " + (out / "run").string(),
                                           out / "log.txt");

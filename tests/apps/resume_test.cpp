@@ -106,7 +106,7 @@ void expect_same_output(const fs::path& a, const fs::path& b) {
 /// Runs `scene` for `steps` steps whole, and killed after `kill_at` frames then resumed; the
 /// two output folders must be the same.
 void expect_resume_matches(const fs::path& scene, int steps, int kill_at) {
-  const fs::path dir = fresh_folder("resume");
+  const fs::path dir = temporary_folder("resume");
   const std::string name = scene.stem().string();
   ASSERT_EQ(run_stiffsoft("run " + scene.string() + " -o " + (dir / "whole").string() + " --steps " + std::to_string(steps),
                           dir / "whole.log"), 0)
@@ -138,7 +138,7 @@ const fs::path kScenes = fs::path(STIFFSOFT_SOURCE_DIR) / "scenes";
 TEST(Resume, KilledRigidPileResumesToTheSameFiles) { expect_resume_matches(kScenes / "light.json", 240, 8); }
 
 TEST(Resume, KilledHybridBdf2SceneWithFrictionResumesToTheSameFiles) {
-  const fs::path dir = fresh_folder("resume_scene");
+  const fs::path dir = temporary_folder("resume_scene");
   expect_resume_matches(with_integrator(kScenes / "soft_ball_on_boxes.json", "bdf2", dir), 300, 10);
   fs::remove_all(dir);
 }
@@ -146,7 +146,7 @@ TEST(Resume, KilledHybridBdf2SceneWithFrictionResumesToTheSameFiles) {
 TEST(Resume, KilledJointedSceneResumesToTheSameFiles) { expect_resume_matches(kScenes / "ragdoll_steps.json", 240, 10); }
 
 TEST(Resume, RefusesAChangedSceneAnotherVersionsFilesAMissingAndADamagedCheckpoint) {
-  const fs::path dir = fresh_folder("resume_errors");
+  const fs::path dir = temporary_folder("resume_errors");
   const fs::path scene = with_integrator(kScenes / "box_stack.json", "backward_euler", dir);
   const fs::path out = dir / "out";
   ASSERT_EQ(run_stiffsoft("run " + scene.string() + " -o " + out.string() + " --steps 20", dir / "a.log"), 0);

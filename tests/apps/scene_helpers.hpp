@@ -21,10 +21,6 @@ inline Simulation simulate(const std::string& json, const std::string& name = "i
   return Simulation(std::move(p.model), p.settings);
 }
 
-/// A fresh empty folder under the system's temporary directory, removed when the test program
-/// exits.
-inline std::filesystem::path fresh_folder(const std::string& stem) { return temporary_folder(stem); }
-
 /// Runs the stiffsoft binary with `args`; returns its exit code; output goes to `log`.
 inline int run_stiffsoft(const std::string& args, const std::filesystem::path& log) {
   const std::string cmd = std::string(STIFFSOFT_BINARY) + " " + args + " > " + log.string() + " 2>&1";

@@ -32,7 +32,7 @@ class ShippedScene : public ::testing::TestWithParam<SceneCase> {};
 
 TEST_P(ShippedScene, RunsConvergesAndStaysIntersectionFree) {
   const SceneCase& c = GetParam();
-  const fs::path out = fresh_folder("stiffsoft_scene_" + c.name);
+  const fs::path out = temporary_folder("stiffsoft_scene_" + c.name);
   const fs::path scene = fs::path(STIFFSOFT_SOURCE_DIR) / "scenes" / (c.name + ".json");
   ASSERT_EQ(run_stiffsoft("run " + scene.string() + " -o " + out.string() + " --steps " + std::to_string(c.steps),
                           out / "run.log"),
@@ -100,7 +100,7 @@ namespace {
 
 /// Runs a broken scene; expects exit code 2 and every `needles` in the log.
 void expect_scene_error(const std::string& file, const std::vector<std::string>& needles) {
-  const fs::path out = fresh_folder("stiffsoft_broken");
+  const fs::path out = temporary_folder("stiffsoft_broken");
   const fs::path scene = fs::path(STIFFSOFT_SOURCE_DIR) / "tests/apps/data" / file;
   EXPECT_EQ(run_stiffsoft("run " + scene.string() + " -o " + (out / "o").string(), out / "run.log"), 2);
   const std::string log = read_text(out / "run.log");
@@ -130,7 +130,7 @@ TEST(BrokenScene, JsonErrorsExitWithTheLoadersMessage) {
 }
 
 TEST(Check, FindsTheIntersectingFrameAndNamesTheBodies) {
-  const fs::path out = fresh_folder("stiffsoft_check");
+  const fs::path out = temporary_folder("stiffsoft_check");
   stiffsoft::PrimitiveShape cube;
   const stiffsoft::SurfaceMesh box = stiffsoft::make_primitive(cube);
   const auto frame = [&](double shift) {
@@ -154,7 +154,7 @@ TEST(Check, FindsTheIntersectingFrameAndNamesTheBodies) {
 }
 
 TEST(Check, MissingSeriesIsAClearError) {
-  const fs::path out = fresh_folder("stiffsoft_check_missing");
+  const fs::path out = temporary_folder("stiffsoft_check_missing");
   EXPECT_EQ(run_stiffsoft("check " + (out / "missing.pvd").string(), out / "check.log"), 1);
   EXPECT_NE(read_text(out / "check.log").find("missing.pvd"), std::string::npos);
   fs::remove_all(out);

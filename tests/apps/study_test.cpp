@@ -54,7 +54,7 @@ const std::string kScenes = STIFFSOFT_SOURCE_DIR "/studies/scenes/";
 // Backward Euler is first order, BDF-2 second order on the steady rotation of a free box
 // (studies/be_vs_bdf2.json with three time steps).
 TEST(Study, BackwardEulerAndBdf2OrdersOnFreeRotation) {
-  const auto dir = fresh_folder("study_orders");
+  const auto dir = temporary_folder("study_orders");
   const auto file = write_study(dir, R"({
     "scene": ")" + kScenes + R"(spinning_box.json",
     "sweep": [{"path": "/time/dt", "values": [0.005, 0.0025, 0.00125]},
@@ -88,7 +88,7 @@ TEST(Study, BackwardEulerAndBdf2OrdersOnFreeRotation) {
 
 // The rigidity error of a spinning affine body falls as stress / κ (slope −1 against κ).
 TEST(Study, RigidityErrorFallsAsOneOverKappa) {
-  const auto dir = fresh_folder("study_kappa");
+  const auto dir = temporary_folder("study_kappa");
   const auto file = write_study(dir, R"({
     "scene": ")" + kScenes + R"(spinning_box.json",
     "set": {"/time/integrator": "bdf2", "/time/duration": 0.5},
@@ -107,7 +107,7 @@ TEST(Study, RigidityErrorFallsAsOneOverKappa) {
 
 // Bad input exits with 2 and names the study file and the JSON path; no run starts.
 TEST(Study, BadInputExitsWithTwo) {
-  const auto dir = fresh_folder("study_bad");
+  const auto dir = temporary_folder("study_bad");
   const auto file = write_study(dir, R"({
     "scene": ")" + kScenes + R"(spinning_box.json",
     "sweep": [{"path": "/time/step", "values": [0.01]}],

@@ -28,6 +28,7 @@
 #include "apps/cli/petsc_arguments.hpp"
 #include <stiffsoft/coupling/linear_solver/petsc_session.hpp>
 #include <stiffsoft/coupling/linear_solver/petsc_solver.hpp>
+#include <temporary_folder.hpp>
 
 extern char** environ;
 
@@ -211,12 +212,12 @@ TEST(BlockJacobi, AppliesTheInverseOfEachDiagonalBlock) {
 // --- every backend on stored Newton systems -----------------------------------------------------
 
 TEST(LinearSystemIo, StoredSystemsAreSymmetricPositiveDefinite) {
+  const std::filesystem::path dir = stiffsoft::testing::temporary_folder("stiffsoft_linear_system_io");
   for (const std::string& name : kSystems) {
     const LinearSystem s = load_linear_system(kDataDir, name);
     EXPECT_EQ(s.upper.rows() % 12, 0) << name;
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(dense(s.upper), Eigen::EigenvaluesOnly);
     EXPECT_GT(eig.eigenvalues().minCoeff(), 0) << name;
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "stiffsoft_linear_system_io";
     save_linear_system(s, dir);
     const LinearSystem again = load_linear_system(dir, name);
     EXPECT_EQ((Eigen::MatrixXd(again.upper) - Eigen::MatrixXd(s.upper)).norm(), 0.0) << name;

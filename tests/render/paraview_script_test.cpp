@@ -57,7 +57,7 @@ TEST(ParaViewScript, OpensTheRunColouredInPvbatch) {
   // without one; xvfb-run -a proved racy on a loaded machine).
   if (!on_path("Xvfb") && !std::getenv("DISPLAY"))
     GTEST_SKIP() << "no X display and no Xvfb for pvbatch (apt-get install xvfb libgl1-mesa-dri)";
-  const fs::path out = fresh_folder("stiffsoft_paraview");
+  const fs::path out = temporary_folder("stiffsoft_paraview");
   const fs::path scene = fs::path(STIFFSOFT_SOURCE_DIR) / "scenes/default.json";
   ASSERT_EQ(run_stiffsoft("run " + scene.string() + " -o " + out.string() + " --steps 20", out / "run.log"), 0)
       << read_text(out / "run.log");

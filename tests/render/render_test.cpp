@@ -18,7 +18,7 @@ bool on_path(const std::string& name) { return std::system(("command -v " + name
 }  // namespace
 
 TEST(Render, WritesPicturesAndAContactSheetThatShowTheBodies) {
-  const fs::path out = fresh_folder("stiffsoft_render");
+  const fs::path out = temporary_folder("stiffsoft_render");
   const fs::path scene = fs::path(STIFFSOFT_SOURCE_DIR) / "scenes/default.json";
   ASSERT_EQ(run_stiffsoft("run " + scene.string() + " -o " + out.string() + " --steps 30", out / "run.log"), 0)
       << read_text(out / "run.log");
@@ -60,7 +60,7 @@ TEST(Render, WritesPicturesAndAContactSheetThatShowTheBodies) {
 }
 
 TEST(Render, RefusesABadSizeAndAMissingSeries) {
-  const fs::path out = fresh_folder("stiffsoft_render_bad");
+  const fs::path out = temporary_folder("stiffsoft_render_bad");
   EXPECT_NE(run_stiffsoft("render " + (out / "none.pvd").string() + " -o " + out.string() + " --size 12", out / "a.log"), 0);
   EXPECT_NE(read_text(out / "a.log").find("WIDTHxHEIGHT"), std::string::npos) << read_text(out / "a.log");
   EXPECT_NE(run_stiffsoft("render " + (out / "none.pvd").string() + " -o " + out.string(), out / "b.log"), 0);

@@ -65,7 +65,7 @@ struct NewtonReport {
   bool converged = false;        ///< the stopping rule was met
   int iterations = 0;            ///< Newton iterations (linear solves)
   int line_search_steps = 0;     ///< energy evaluations in line searches
-  int line_search_halvings = 0;  ///< trials that halved the step (a geodesic trial's straight retry at the same α is not one)
+  int line_search_halvings = 0;  ///< times the line search halved its step (a geodesic trial's straight retry at the same α is not one)
   double smallest_ccd_step = 1;  ///< smallest α bound returned by CCD
   int ccd_limited_iterations = 0;  ///< iterations whose CCD bound α was < 1
   int revised_directions = 0;      ///< directions solved again after a term revised its Hessian (friction)
