@@ -123,6 +123,52 @@ TEST(TrialPath, TurnsABodyWithoutStretchingIt) {
   }
 }
 
+TEST(TrialPath, PutsEachBlockAtItsOwnPoint) {
+  // Per block, the point of the path at that block's α: body a turned at α = 0.3, body b at 0.8.
+  const Model& model = two_box_model();
+  Eigen::VectorXd q = model.initial_q();
+  set_affine(model, 1, Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, -1).normalized()).toRotationMatrix(), q);
+  const Eigen::VectorXd p = turn(model, q, Eigen::Vector3d(0.4, 0.1, -0.2), Eigen::Vector3d(0.02, -0.05, 0.01));
+  const TrialPath path(model, q, p, true, 0);
+  ASSERT_FALSE(path.straight());
+  std::vector<double> alpha(model.blocks.size());
+  alpha[std::size_t(model.bodies[1].block)] = 0.3;
+  alpha[std::size_t(model.bodies[2].block)] = 0.8;
+  Eigen::VectorXd mixed, at;
+  path.point(model, alpha, mixed);
+  for (int b : {1, 2}) {
+    path.point(alpha[std::size_t(model.bodies[b].block)], at);
+    EXPECT_EQ(mixed.segment<12>(model.bodies[b].dof), at.segment<12>(model.bodies[b].dof)) << "body " << b;
+  }
+}
+
+TEST(TrialPath, WeighsTheStretchOfACutChord) {
+  // Both boxes turn by 0.6 rad; CCD cut body a's island at β = 0.4 of the chord from q to q(α),
+  // and left body b's whole. The stretch counts body a only: V⊥ at 0.4 of its chord, less V⊥ at
+  // the path's own point q(0.4 α), a rotation.
+  const Model& model = two_box_model();
+  const Eigen::VectorXd q = model.initial_q();
+  const Eigen::VectorXd p = turn(model, q, Eigen::Vector3d(0, 0.6, 0), Eigen::Vector3d(0.01, 0, 0));
+  const TrialPath path(model, q, p, true, 0);
+  BlockIslands islands(int(model.blocks.size()));
+  islands.number();
+  std::vector<double> bound(std::size_t(islands.count()), 1.0);
+  const BodyModel& a = model.bodies[1];
+  bound[std::size_t(islands.island(a.block))] = 0.4;
+  const double alpha = 0.5;
+  Eigen::VectorXd end, own;
+  path.point(alpha, end);
+  path.point(0.4 * alpha, own);
+  const abd::Vector12d chord_point = q.segment<12>(a.dof) + 0.4 * (end - q).segment<12>(a.dof);
+  const double expected = abd::orthogonality_potential(chord_point, a.kappa, a.volume) -
+                          abd::orthogonality_potential(own.segment<12>(a.dof), a.kappa, a.volume);
+  EXPECT_GT(expected, 0);
+  EXPECT_NEAR(path.chord_stretch(islands, bound, alpha), expected, 1e-9 * expected);
+  // Uncut (every β = 1), or on the straight line, nothing is counted.
+  EXPECT_EQ(path.chord_stretch(islands, std::vector<double>(bound.size(), 1.0), alpha), 0);
+  EXPECT_EQ(TrialPath(model, q, p, false, 0).chord_stretch(islands, bound, alpha), 0);
+}
+
 namespace {
 
 /// A 0.1 m box turned onto a corner, dropped 0.3 m onto a floor, κ = 1e10 Pa, h = 1/240 s.

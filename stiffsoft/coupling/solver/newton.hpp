@@ -28,6 +28,10 @@ struct NewtonSettings {
   /// this fraction of ε_v h (EnergyTerm::stick_zone_step); infinite: no such condition.
   double stick_tolerance = std::numeric_limits<double>::infinity();
   double h = 1e-2;           ///< time step (s), to turn the step into a speed
+  /// β h² (s²): the potentials' factor in the minimised energy ½ ‖q − q̃‖²_M + β h² V, to weigh
+  /// the orthogonality energy a cut geodesic trial adds (TrialPath::chord_stretch, in J) against
+  /// the direction's decrease; 1 where the terms are minimised as they are.
+  double potential_scale = 1;
   int max_iterations = 200;  ///< cap on iterations
   int max_line_search = 60;  ///< cap on line-search trials per direction
   /// Line-search trials turn affine bodies along the rotation group (TrialPath); false: along

@@ -128,6 +128,7 @@ StepStats Simulation::step() {
   ns.gap_tolerance = m_settings.gap_tolerance;
   if (m_friction && m_settings.friction_iterations > 1) ns.stick_tolerance = friction_resolution;
   ns.h = h;
+  ns.potential_scale = beta * h * h;
   ns.max_iterations = m_settings.max_iterations;
   ns.geodesic_line_search = m_settings.geodesic_line_search;
   ns.island_line_search = m_settings.island_line_search;

@@ -20,18 +20,41 @@ TrialPath::TrialPath(const Model& model, const Eigen::VectorXd& q, const Eigen::
     if (w.squaredNorm() == 0 || stretch < decrease) continue;
     const Eigen::Matrix3d A = abd::affine_matrix(q_b);
     const Eigen::Matrix3d M = abd::affine_matrix(p_b) * A.inverse();
-    m_turns.push_back({body.dof, A, w, 0.5 * (M + M.transpose())});
+    m_turns.push_back({body.dof, body.block, body.kappa * body.volume, A, w, 0.5 * (M + M.transpose())});
   }
+}
+
+Eigen::Matrix3d TrialPath::turned(const Turn& t, double alpha) {
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(alpha * t.w.norm(), t.w.normalized()).toRotationMatrix();
+  return R * (Eigen::Matrix3d::Identity() + alpha * t.S) * t.A;
 }
 
 void TrialPath::point(double alpha, Eigen::VectorXd& out) const {
   out = m_q + alpha * m_p;
+  for (const Turn& t : m_turns) out.segment<12>(t.dof) = abd::make_q(out.segment<3>(t.dof), turned(t, alpha));
+}
+
+void TrialPath::point(const Model& model, const std::vector<double>& alpha, Eigen::VectorXd& out) const {
+  out = m_q;
+  for (std::size_t b = 0; b < model.blocks.size(); ++b)
+    out.segment(model.blocks[b].offset, model.blocks[b].size) +=
+        alpha[b] * m_p.segment(model.blocks[b].offset, model.blocks[b].size);
+  for (const Turn& t : m_turns)
+    out.segment<12>(t.dof) = abd::make_q(out.segment<3>(t.dof), turned(t, alpha[std::size_t(t.block)]));
+}
+
+double TrialPath::chord_stretch(const BlockIslands& islands, const std::vector<double>& bound, double alpha) const {
+  // V⊥ = κ ν ‖A Aᵀ − I‖²_F of the chord's point against the path's.
+  const auto V = [](const Turn& t, const Eigen::Matrix3d& A) {
+    return t.kappa_volume * (A * A.transpose() - Eigen::Matrix3d::Identity()).squaredNorm();
+  };
+  double excess = 0;
   for (const Turn& t : m_turns) {
-    const double angle = alpha * t.w.norm();
-    const Eigen::Matrix3d R = Eigen::AngleAxisd(angle, t.w.normalized()).toRotationMatrix();
-    const Eigen::Matrix3d A = R * (Eigen::Matrix3d::Identity() + alpha * t.S) * t.A;
-    out.segment<12>(t.dof) = abd::make_q(out.segment<3>(t.dof), A);
+    const double beta = bound[std::size_t(islands.island(t.block))];
+    if (beta >= 1) continue;
+    excess += V(t, t.A + beta * (turned(t, alpha) - t.A)) - V(t, turned(t, alpha * beta));
   }
+  return excess;
 }
 
 }  // namespace stiffsoft

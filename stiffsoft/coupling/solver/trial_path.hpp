@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include <stiffsoft/coupling/model/block_islands.hpp>
 #include <stiffsoft/coupling/model/model.hpp>
 
 namespace stiffsoft {
@@ -20,9 +21,12 @@ namespace stiffsoft {
 class TrialPath {
  public:
   /// The path from q along p. With geodesic, a body turns along exp(α W) when the orthogonality
-  /// energy the straight line would add by turning it, κ ν ‖W Wᵀ‖²_F at α = 1, is at least
-  /// `decrease` (J; Newton passes |gᵀp|, what the step's first order promises): a body whose turn
-  /// could not cancel that moves straight, and a path on which none turns is straight.
+  /// energy the straight line would add by turning it, κ ν ‖W Wᵀ‖²_F at α = 1 (J), is at least
+  /// `decrease`; a path on which no body turns is straight. Newton passes |gᵀp|, in the units of
+  /// its energy, where V⊥ enters as β h² V⊥: so a body turns when its stretch in those units is
+  /// at least the fraction β h² / (1 s²) of the decrease (1e-4 at h = 1/100 s, 1.7e-5 at 1/240,
+  /// 1e-6 at 1/1000). A fraction fixed at 1e-5, 1e-4 or 1e-3 took more iterations at one time
+  /// step or another, and 0 (every turn) more still (docs/newton.md, session 41).
   TrialPath(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& p, bool geodesic, double decrease);
 
   /// Whether q(α) = q + α p (geodesic off, or no affine body turns).
@@ -30,15 +34,26 @@ class TrialPath {
 
   /// q(α) into out (resized to q's size).
   void point(double alpha, Eigen::VectorXd& out) const;
+  /// Each DOF block b at its own point of the path, q_b(alpha[b]) (one entry per block), into
+  /// out: Newton's geodesic trial for islands that CCD cut at different fractions.
+  void point(const Model& model, const std::vector<double>& alpha, Eigen::VectorXd& out) const;
+  /// The orthogonality energy (J) that moving the turning bodies of the islands CCD cut, each
+  /// only the fraction βᵢ = bound[island] < 1 of its chord from q to q(α), adds over sending
+  /// them to the path's own points q(α βᵢ): part of a chord between two turns is no turn.
+  double chord_stretch(const BlockIslands& islands, const std::vector<double>& bound, double alpha) const;
 
  private:
   /// One affine body's turn: its DOF offset, A, the axis-angle vector w of W, and S.
   struct Turn {
-    int dof;
+    int dof, block;
+    double kappa_volume;  // κ ν of the orthogonality potential
     Eigen::Matrix3d A;
     Eigen::Vector3d w;
     Eigen::Matrix3d S;
   };
+  /// The turning body's affine matrix at α.
+  static Eigen::Matrix3d turned(const Turn& t, double alpha);
+
   const Eigen::VectorXd& m_q;
   const Eigen::VectorXd& m_p;
   std::vector<Turn> m_turns;
