@@ -4,6 +4,7 @@
 #include <Eigen/LU>
 
 #include <stiffsoft/libabd/affine_body.hpp>
+#include <stiffsoft/libabd/orthogonality_potential.hpp>
 
 namespace stiffsoft {
 
@@ -44,9 +45,9 @@ void TrialPath::point(const Model& model, const std::vector<double>& alpha, Eige
 }
 
 double TrialPath::chord_stretch(const BlockIslands& islands, const std::vector<double>& bound, double alpha) const {
-  // V⊥ = κ ν ‖A Aᵀ − I‖²_F of the chord's point against the path's.
+  // V⊥ of the chord's point against the path's (it depends on A only).
   const auto V = [](const Turn& t, const Eigen::Matrix3d& A) {
-    return t.kappa_volume * (A * A.transpose() - Eigen::Matrix3d::Identity()).squaredNorm();
+    return abd::orthogonality_potential(abd::make_q(Eigen::Vector3d::Zero(), A), t.kappa_volume, 1.0);
   };
   double excess = 0;
   for (const Turn& t : m_turns) {

@@ -43,10 +43,10 @@ class TrialPath {
   double chord_stretch(const BlockIslands& islands, const std::vector<double>& bound, double alpha) const;
 
  private:
-  /// One affine body's turn: its DOF offset, A, the axis-angle vector w of W, and S.
+  /// One affine body's turn: its DOF offset and block, κ ν, A, the axis-angle vector w of W, and S.
   struct Turn {
     int dof, block;
-    double kappa_volume;  // κ ν of the orthogonality potential
+    double kappa_volume;
     Eigen::Matrix3d A;
     Eigen::Vector3d w;
     Eigen::Matrix3d S;
