@@ -25,8 +25,8 @@ class TrialPath {
   /// `decrease`; a path on which no body turns is straight. Newton passes |gᵀp|, in the units of
   /// its energy, where V⊥ enters as β h² V⊥: so a body turns when its stretch in those units is
   /// at least the fraction β h² / (1 s²) of the decrease (1e-4 at h = 1/100 s, 1.7e-5 at 1/240,
-  /// 1e-6 at 1/1000). A fraction fixed at 1e-5, 1e-4 or 1e-3 took more iterations at one time
-  /// step or another, and 0 (every turn) more still (docs/newton.md, session 41).
+  /// 1e-6 at 1/1000). A fraction fixed at 0 (every turn), 1e-5, 1e-4 or 1e-3 took more
+  /// iterations on some scene or time step (docs/newton.md, session 41).
   TrialPath(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& p, bool geodesic, double decrease);
 
   /// Whether q(α) = q + α p (geodesic off, or no affine body turns).
