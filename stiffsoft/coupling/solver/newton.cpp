@@ -282,10 +282,8 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
             path.point(model, own, q_trial);
             chord = q_trial - q;
             chord_bounds = move_bounds(chord, model.surface_step(chord));
-            if (chord_bounds->smallest < 1) q_trial = q + chord_bounds->islands.scaled(model, chord, chord_bounds->bound);
-          } else {
-            q_trial = q + chord_bounds->islands.scaled(model, chord, chord_bounds->bound);
           }
+          if (chord_bounds->smallest < 1) q_trial = q + chord_bounds->islands.scaled(model, chord, chord_bounds->bound);
         }
       }
       if (straight) q_trial = q + line->islands.scaled(model, p, scale);
