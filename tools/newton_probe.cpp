@@ -159,6 +159,12 @@ struct Row {
   std::vector<double> term_gradient, term_curvature_ratio;
   /// Per term: ‖g_t(q + αp) − g_t − α H_t p‖ / ‖g‖ (H_t the term's own Hessian).
   std::vector<double> term_gradient_model;
+  /// Per term: (g_t(q + αp) − g_t − α H_t p)ᵀ p / |gᵀp|, the term's share of where the slope of
+  /// E along p at the step's end departs from the model's (the model's slope is 0 there for a
+  /// full step): negative where the term falls further than its model, so that the model was too
+  /// stiff along p for it. The last entry is α (Σ_t H_t − H) p ᵀ p / |gᵀp|: what the solved matrix
+  /// adds beyond the terms' own Hessians (friction's revision).
+  std::vector<double> term_slope_model;
   /// Per barrier stencil kind: κ Σ dxᵀ (Π₊∇²P − ∇²P) dx over its stencils, the curvature the
   /// projection adds along p (J m⁻²·m², i.e. J), as a share of the barrier's whole addition.
   std::array<double, kKindCount> projection_share{};
@@ -247,8 +253,15 @@ Row probe(const NewtonIterate& it, double dhat, double h, std::mt19937& rng) {
                               g_new);
     row.new_contacts = g_new.norm() / g_norm;
   }
-  for (int t = 0; t < nt; ++t)
-    row.term_gradient_model.push_back((end.gradient[t] - at.gradient[t] - it.alpha * term_Hp[t]).norm() / g_norm);
+  const double slope_scale = std::max(std::abs(it.g.dot(p)), 1e-300);
+  Eigen::VectorXd sum_Hp = Eigen::VectorXd::Zero(q.size());
+  for (int t = 0; t < nt; ++t) {
+    const Eigen::VectorXd miss = end.gradient[t] - at.gradient[t] - it.alpha * term_Hp[t];
+    row.term_gradient_model.push_back(miss.norm() / g_norm);
+    row.term_slope_model.push_back(miss.dot(p) / slope_scale);
+    sum_Hp += term_Hp[t];
+  }
+  row.term_slope_model.push_back(it.alpha * (sum_Hp - Hp).dot(p) / slope_scale);
 
   const double predicted = it.alpha * it.g.dot(p) + 0.5 * it.alpha * it.alpha * p.dot(Hp);
   const double actual = sum(end.value) - sum(at.value);
@@ -316,6 +329,8 @@ int main(int argc, char** argv) {
       for (const std::string& n : names) out << ",gradient_" << n;
       for (const std::string& n : names) out << ",curvature_ratio_" << n;
       for (const std::string& n : names) out << ",gradient_model_" << n;
+      for (const std::string& n : names) out << ",slope_model_" << n;
+      out << ",slope_model_revision";
       for (const char* kind : kKinds) out << ",projection_share_" << kind;
       out << "\n";
       for (const Row& r : rows) {
@@ -325,6 +340,7 @@ int main(int argc, char** argv) {
         for (double v : r.term_gradient) out << ',' << v;
         for (double v : r.term_curvature_ratio) out << ',' << v;
         for (double v : r.term_gradient_model) out << ',' << v;
+        for (double v : r.term_slope_model) out << ',' << v;
         for (double v : r.projection_share) out << ',' << v;
         out << "\n";
       }
@@ -356,7 +372,9 @@ int main(int argc, char** argv) {
       report("gradient error, " + names[t], column([&](const Row& r) { return r.term_gradient[t]; }));
       report("curvature ratio, " + names[t], column([&](const Row& r) { return r.term_curvature_ratio[t]; }));
       report("gradient model error, " + names[t], column([&](const Row& r) { return r.term_gradient_model[t]; }));
+      report("slope model error, " + names[t], column([&](const Row& r) { return r.term_slope_model[t]; }));
     }
+    report("slope model error, friction's revision", column([&](const Row& r) { return r.term_slope_model.back(); }));
     for (int k = 0; k < kKindCount; ++k)
       report(std::string("share of the barrier's projection, ") + kKinds[k],
              column([&](const Row& r) { return r.projection_share[k]; }));
