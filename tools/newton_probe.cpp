@@ -12,6 +12,7 @@
 ///  - the gradient at the step's end with the model's, ‖g(q + αp) − g − αHp‖ / ‖g‖, in all, per
 ///    term and for the barrier stencils that entered d̂ during the step, and the slope of E
 ///    along p there (0 at the line's minimum);
+///  - each term's share of the slope of E along p at the step's end, against the model's;
 ///  - by barrier stencil kind, the share of the curvature along p that the projection adds.
 /// Every difference is taken at three step lengths (surface displacements of 1e-4, 1e-5 and
 /// 1e-6 d̂) and the smallest error reported. The probes leave the run's iterates unchanged:
@@ -163,7 +164,8 @@ struct Row {
   /// E along p at the step's end departs from the model's (the model's slope is 0 there for a
   /// full step): negative where the term falls further than its model, so that the model was too
   /// stiff along p for it. The last entry is α (Σ_t H_t − H) p ᵀ p / |gᵀp|: what the solved matrix
-  /// adds beyond the terms' own Hessians (friction's revision).
+  /// takes away from or adds to the terms' own Hessians (the released contacts' reduced
+  /// Hessian, friction's revision).
   std::vector<double> term_slope_model;
   /// Per barrier stencil kind: κ Σ dxᵀ (Π₊∇²P − ∇²P) dx over its stencils, the curvature the
   /// projection adds along p (J m⁻²·m², i.e. J), as a share of the barrier's whole addition.

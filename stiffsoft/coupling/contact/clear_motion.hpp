@@ -4,6 +4,7 @@
 /// known before any pair's distance is computed).
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -28,8 +29,8 @@ class ClearMotion {
   /// there); `settings`: the queries' CCD settings (s, ξ; t_max is each query's own).
   ClearMotion(const std::vector<ContactConstraint>& constraints, const Eigen::MatrixX3d& x0,
               const Eigen::MatrixX3d& x1, double dhat, const ccd::CcdSettings& settings);
-  /// True when ACCD over the pair with these surface vertices (−1: none) is certain to return
-  /// its t_max: the query can be skipped with the same result.
+  /// True when ACCD over the pair with these surface vertices (the first always one, −1 for
+  /// none after it) is certain to return its t_max: the query can be skipped with the same result.
   bool is_clear(const std::array<int, 4>& vertices) const {
     double clearance = m_clearance[std::size_t(vertices[0])], reach = m_reach[std::size_t(vertices[0])];
     for (int i = 1; i < 4; ++i)
