@@ -21,11 +21,12 @@ Eigen::MatrixX3d point_over_triangle(double height) {
   return x;
 }
 
-/// The face–vertex contact of point_over_triangle, active where the point is within d̂.
-std::vector<ContactConstraint> face_vertex_contact() {
+/// The face–vertex contact of point_over_triangle(height), active where the point is within d̂.
+std::vector<ContactConstraint> face_vertex_contact(double height) {
   ContactConstraint k;
   k.stencil.kind = contact::PrimitivePair::FaceVertex;
   k.vertices = {0, 1, 2, 3};
+  k.distance = height;
   return {k};
 }
 
@@ -41,8 +42,8 @@ TEST(ClearMotion, CallsAPairClearOnlyWhenItsVerticesMoveTooLittleToCloseItsGap) 
   Eigen::MatrixX3d small = x0, large = x0;
   small(0, 2) -= 0.05 * kDhat;  // 4 × 0.05 d̂ = 0.2 d̂ < 0.9 × 0.5 d̂: clear
   large(0, 2) -= 1.0 * kDhat;   // passes through the triangle: must be queried
-  const ClearMotion clear_small(face_vertex_contact(), x0, small, kDhat, s);
-  const ClearMotion clear_large(face_vertex_contact(), x0, large, kDhat, s);
+  const ClearMotion clear_small(face_vertex_contact(0.5 * kDhat), x0, small, kDhat, s);
+  const ClearMotion clear_large(face_vertex_contact(0.5 * kDhat), x0, large, kDhat, s);
   EXPECT_TRUE(clear_small.is_clear({0, 1, 2, 3}));
   EXPECT_EQ(toi(x0, small, s), s.t_max);
   EXPECT_FALSE(clear_large.is_clear({0, 1, 2, 3}));
@@ -74,7 +75,7 @@ TEST(ClearMotion, EveryPairItCallsClearIsOneCcdFindsFreeOfContact) {
     Eigen::MatrixX3d x1 = x0;
     const double reach = h * std::pow(10.0, scale(rng));
     for (int v = 0; v < 4; ++v) x1.row(v) += reach / std::sqrt(3.0) * Eigen::RowVector3d(unit(rng), unit(rng), unit(rng));
-    const std::vector<ContactConstraint> active = h < kDhat ? face_vertex_contact() : std::vector<ContactConstraint>{};
+    const std::vector<ContactConstraint> active = h < kDhat ? face_vertex_contact(h) : std::vector<ContactConstraint>{};
     const double t = toi(x0, x1, s);
     hits += t < s.t_max;
     if (!ClearMotion(active, x0, x1, kDhat, s).is_clear({0, 1, 2, 3})) continue;

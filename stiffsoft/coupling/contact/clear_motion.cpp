@@ -10,11 +10,9 @@ namespace stiffsoft {
 ClearMotion::ClearMotion(const std::vector<ContactConstraint>& constraints, const Eigen::MatrixX3d& x0,
                          const Eigen::MatrixX3d& x1, double dhat, const ccd::CcdSettings& settings)
     : m_clearance(std::size_t(x0.rows()), dhat), m_reach(std::size_t(x0.rows())), m_keep(1 - settings.tolerance) {
-  for (const ContactConstraint& k : constraints) {
-    const double d = std::sqrt(contact::stencil_squared_distance(k.stencil, gather(x0, k.vertices)));
+  for (const ContactConstraint& k : constraints)
     for (int v : k.vertices)
-      if (v >= 0) m_clearance[std::size_t(v)] = std::min(m_clearance[std::size_t(v)], d);
-  }
+      if (v >= 0) m_clearance[std::size_t(v)] = std::min(m_clearance[std::size_t(v)], k.distance);
   double scale = 0;  // the largest coordinate of any query, for ACCD's rounding allowance
   for (Eigen::Index v = 0; v < x0.rows(); ++v) {
     m_reach[std::size_t(v)] = (x1.row(v) - x0.row(v)).norm();

@@ -25,8 +25,9 @@ namespace stiffsoft {
 /// pairs of a pile qualify by orders of magnitude.
 class ClearMotion {
  public:
-  /// `constraints`: every pair closer than `dhat` (m) at x0 (BarrierTerm's active set built
-  /// there); `settings`: the queries' CCD settings (s, ξ; t_max is each query's own).
+  /// `constraints`: every pair closer than `dhat` (m) at x0, with its distance there
+  /// (build_constraints at x0: BarrierTerm's active set); `settings`: the queries' CCD settings
+  /// (s, ξ; t_max is each query's own).
   ClearMotion(const std::vector<ContactConstraint>& constraints, const Eigen::MatrixX3d& x0,
               const Eigen::MatrixX3d& x1, double dhat, const ccd::CcdSettings& settings);
   /// True when ACCD over the pair with these surface vertices (the first always one, −1 for
@@ -43,7 +44,7 @@ class ClearMotion {
 
  private:
   /// Relative rounding margin on the clearance and the reach: far above the distance formulas'
-  /// differences (the contact's stencil distance against ACCD's primitive distance).
+  /// differences (the contact's classified distance against ACCD's primitive distance).
   static constexpr double kRelativeMargin = 1e-6;
   std::vector<double> m_clearance;  ///< per vertex, m
   std::vector<double> m_reach;      ///< per vertex, ‖x1 − x0‖, m

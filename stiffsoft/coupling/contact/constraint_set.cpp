@@ -16,8 +16,8 @@ namespace {
 
 /// Canonical vertex order so that the same physical pair found from different candidates
 /// compares equal: VV sorted, EV with its edge sorted, EE with each edge sorted and the
-/// edges ordered, FV as the face stores it.
-ContactConstraint canonical(PrimitivePair kind, std::array<int, 4> v, double eps_x, bool segment) {
+/// edges ordered, FV as the face stores it; its distance √d2.
+ContactConstraint canonical(PrimitivePair kind, std::array<int, 4> v, double eps_x, bool segment, double d2) {
   switch (kind) {
     case PrimitivePair::VertexVertex:
       if (v[0] > v[1]) std::swap(v[0], v[1]);
@@ -42,6 +42,7 @@ ContactConstraint canonical(PrimitivePair kind, std::array<int, 4> v, double eps
   c.stencil.eps_x = kind == PrimitivePair::EdgeEdge ? eps_x : 0.0;
   c.stencil.segment_distance = segment;
   c.vertices = v;
+  c.distance = std::sqrt(d2);
   return c;
 }
 
@@ -77,7 +78,7 @@ std::vector<ContactConstraint> build_constraints(const Model& model, const Eigen
     const contact::Classified c = contact::classify_point_triangle(
         xs.segment<3>(0), xs.segment<3>(3), xs.segment<3>(6), xs.segment<3>(9));
     const double d2 = contact::squared_distance(c.kind, contact::gather_classified(c, xs));
-    if (d2 < dhat2) local.local().push_back(canonical(c.kind, pick(ids, c), 0.0, false));
+    if (d2 < dhat2) local.local().push_back(canonical(c.kind, pick(ids, c), 0.0, false, d2));
   });
 
   tbb::parallel_for(size_t(0), candidates.edge_edge.size(), [&](size_t k) {
@@ -100,9 +101,9 @@ std::vector<ContactConstraint> build_constraints(const Model& model, const Eigen
         mesh.x_bar.row(ids[0]).transpose(), mesh.x_bar.row(ids[1]).transpose(),
         mesh.x_bar.row(ids[2]).transpose(), mesh.x_bar.row(ids[3]).transpose());
     if (contact::edge_edge_cross_squared_norm(xs) < eps_x)
-      local.local().push_back(canonical(PrimitivePair::EdgeEdge, ids, eps_x, true));
+      local.local().push_back(canonical(PrimitivePair::EdgeEdge, ids, eps_x, true, d2));
     else
-      local.local().push_back(canonical(c.kind, pick(ids, c), eps_x, false));
+      local.local().push_back(canonical(c.kind, pick(ids, c), eps_x, false, d2));
   });
 
   std::size_t count = 0;
@@ -111,15 +112,18 @@ std::vector<ContactConstraint> build_constraints(const Model& model, const Eigen
   all.reserve(count);
   for (const auto& l : local) all.insert(all.end(), l.begin(), l.end());
   // Constraints with equal keys differ only in their weights, integer multiplicities summed
-  // exactly below: the merged list is the same whatever the sort's order among them, and so
-  // whatever the thread count. Merged in place.
+  // exactly below, and in the last bits of their distances, of which the smallest is kept: the
+  // merged list is the same whatever the sort's order among them, and so whatever the thread
+  // count. Merged in place.
   tbb::parallel_sort(all.begin(), all.end(), less);
   std::size_t merged = 0;
   for (std::size_t k = 0; k < all.size(); ++k) {
-    if (merged > 0 && !less(all[merged - 1], all[k]))
+    if (merged > 0 && !less(all[merged - 1], all[k])) {
       all[merged - 1].weight += all[k].weight;
-    else
+      all[merged - 1].distance = std::min(all[merged - 1].distance, all[k].distance);
+    } else {
       all[merged++] = all[k];
+    }
   }
   all.resize(merged);
   return all;

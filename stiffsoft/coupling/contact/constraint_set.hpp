@@ -17,12 +17,13 @@
 
 namespace stiffsoft {
 
-/// One active contact: the stencil's kind, its global surface vertices (−1 where unused) and
-/// its multiplicity (how many candidates classified to it).
+/// One active contact: the stencil's kind, its global surface vertices (−1 where unused), its
+/// multiplicity (how many candidates classified to it) and its distance where it was found.
 struct ContactConstraint {
   contact::Stencil stencil;
   std::array<int, 4> vertices{-1, -1, -1, -1};
-  double weight = 1;  ///< multiplicity, ≥ 1
+  double weight = 1;    ///< multiplicity, ≥ 1
+  double distance = 0;  ///< d at the surface build_constraints found it at (m); 0 when unknown
 };
 
 /// Surface points stored point by point (|V|×3, row-major): a stencil's four points are four
