@@ -9,11 +9,15 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <random>
 #include <set>
+#include <stdexcept>
+#include <string>
 #include <stiffsoft/coupling/contact/broad_phase.hpp>
 #include <stiffsoft/coupling/contact/distance_classification.hpp>
 #include <stiffsoft/coupling/contact/ordered_chunks.hpp>
+#include <stiffsoft/coupling/contact/swept_candidates.hpp>
 #include <stiffsoft/coupling/terms/ordered_sum.hpp>
 
 #include "scene_helpers.hpp"
@@ -208,6 +212,107 @@ TEST(BroadPhase, RememberedPairsAreTheFreshBroadPhasesAtEveryCall) {
   EXPECT_GT(heap_from_memory, 0);
   EXPECT_GT(slab_refreshing, 0);
   EXPECT_GT(slab_from_memory, 0);
+}
+
+/// True when every pair of `part` is one of `whole`'s.
+bool holds(const Candidates& whole, const Candidates& part) {
+  const Candidates w = sorted_pairs(whole), p = sorted_pairs(part);
+  return std::includes(w.vertex_face.begin(), w.vertex_face.end(), p.vertex_face.begin(), p.vertex_face.end()) &&
+         std::includes(w.edge_edge.begin(), w.edge_edge.end(), p.edge_edge.begin(), p.edge_edge.end());
+}
+
+/// The index of the body called `name`.
+int body_named(const Model& model, const std::string& name) {
+  for (std::size_t b = 0; b < model.bodies.size(); ++b)
+    if (model.bodies[b].name == name) return int(b);
+  throw std::invalid_argument("no body " + name);
+}
+
+/// x with body `name`'s vertices shifted by `shift` (m).
+Eigen::MatrixX3d shifted(const Model& model, Eigen::MatrixX3d x, const std::string& name, const Eigen::RowVector3d& shift) {
+  const BodyModel& body = model.bodies[std::size_t(body_named(model, name))];
+  for (int v = body.vertex_begin; v < body.vertex_end; ++v) x.row(v) += shift;
+  return x;
+}
+
+TEST(SweptCandidates, ServeASegmentTheirBoxesHoldOrWhoseMovedBodiesAreAlone) {
+  const PreparedScene heap =
+      prepare_scene(load_scene_from_string(kHeap, STIFFSOFT_SOURCE_DIR, "heap.json", "heap"), "heap.json");
+  const Model& model = heap.model;
+  const double proximity = 0.005, slack = 1e-4;  // d̂ = 1 cm
+  BroadPhase finder(0.01);
+  const Eigen::MatrixX3d x = model.surface(model.initial_q());
+  SweptCandidates kept(model, x, x, proximity, slack, finder);
+  // Within the slack of every box: served with no body moved.
+  const Eigen::MatrixX3d nudged = shifted(model, x, "b", Eigen::RowVector3d(0, 0.5 * slack, 0));
+  const auto within = kept.extension(model, x, nudged);
+  ASSERT_TRUE(within.has_value());
+  EXPECT_TRUE(within->empty());
+  // The sphere on top (13 mm above the box below it) lifted by 0.3 m: its segment starts
+  // near the box, so not served; from 0.3 m to 0.35 m up it is alone, served, and its boxes
+  // follow it.
+  const int sphere = body_named(model, "d");
+  const Eigen::MatrixX3d lifted = shifted(model, x, "d", Eigen::RowVector3d(0, 0.3, 0));
+  const Eigen::MatrixX3d higher = shifted(model, x, "d", Eigen::RowVector3d(0, 0.35, 0));
+  EXPECT_FALSE(kept.extension(model, x, lifted).has_value());
+  const auto alone = kept.extension(model, lifted, higher);
+  ASSERT_TRUE(alone.has_value());
+  EXPECT_EQ(*alone, std::vector<int>{sphere});
+  EXPECT_FALSE(kept.covers(higher));
+  kept.extend(model, lifted, higher, *alone);
+  EXPECT_TRUE(kept.covers(lifted));
+  EXPECT_TRUE(kept.covers(higher));
+  EXPECT_TRUE(holds(kept.all(), broad_phase(model, lifted, higher, proximity + slack)));
+  // Back down onto the box, or the box under it moved a centimetre: pairs the candidates may
+  // lack, so not served.
+  EXPECT_FALSE(kept.extension(model, higher, x).has_value());
+  EXPECT_FALSE(kept.extension(model, higher, shifted(model, higher, "b", Eigen::RowVector3d(0.01, 0, 0))).has_value());
+  // A soft body has pairs with itself: never served once it left its boxes.
+  const PreparedScene slab =
+      prepare_scene(load_scene_from_string(kSlab, STIFFSOFT_SOURCE_DIR, "slab.json", "slab"), "slab.json");
+  const Eigen::MatrixX3d s = slab.model.surface(slab.model.initial_q());
+  const SweptCandidates slab_kept(slab.model, s, s, 0.01, 1e-4, finder);
+  EXPECT_FALSE(slab_kept.extension(slab.model, s, shifted(slab.model, s, "slab", Eigen::RowVector3d(0, 1, 0))).has_value());
+}
+
+TEST(SweptCandidates, AServedSegmentsPairsAreAmongTheirs) {
+  // Random small moves of every body (a quarter of the slack, so most segments are served)
+  // and, now and then, one body by 3 cm (served only when it stays alone): whenever a segment
+  // is served, the fresh broad phase of the segment, grown as the candidates were, is a subset.
+  const PreparedScene heap =
+      prepare_scene(load_scene_from_string(kHeap, STIFFSOFT_SOURCE_DIR, "heap.json", "heap"), "heap.json");
+  const Model& model = heap.model;
+  const double proximity = 0.005, slack = 4e-4;
+  BroadPhase finder(0.01);
+  std::mt19937 rng(23);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  Eigen::MatrixX3d x = model.surface(model.initial_q());
+  std::optional<SweptCandidates> kept;
+  kept.emplace(model, x, x, proximity, slack, finder);
+  int served = 0, refused = 0;
+  for (int call = 0; call < 80; ++call) {
+    Eigen::MatrixX3d next = x;
+    for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+      const BodyModel& body = model.bodies[b];
+      if (body.dof < 0) continue;
+      const Eigen::RowVector3d shift(normal(rng), normal(rng), normal(rng));
+      const double scale = call % 7 == int(b) ? 0.03 : 0.25 * slack;
+      for (int v = body.vertex_begin; v < body.vertex_end; ++v) next.row(v) += scale * shift.normalized();
+    }
+    if (const auto moved = kept->extension(model, x, next)) {
+      kept->extend(model, x, next, *moved);
+      ++served;
+      EXPECT_TRUE(kept->covers(x) && kept->covers(next)) << "call " << call;
+      EXPECT_TRUE(holds(kept->all(), broad_phase(model, x, next, proximity + slack))) << "call " << call;
+    } else {
+      ++refused;
+      kept.emplace(model, x, next, proximity, slack, finder);
+    }
+    x = next;
+  }
+  std::printf("    segments served by kept candidates / by a new broad phase: %d / %d\n", served, refused);
+  EXPECT_GT(served, 10);
+  EXPECT_GT(refused, 3);
 }
 
 TEST(InOrderedChunks, GathersInItemOrderWhateverTheThreadCount) {

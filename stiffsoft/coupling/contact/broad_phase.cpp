@@ -305,7 +305,7 @@ Candidates broad_phase(const Model& model, const Eigen::MatrixX3d& x0, const Eig
 }
 
 Candidates BroadPhase::find(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
-                            double inflation, Candidates* ungrown) {
+                            double inflation, Candidates* ungrown, std::vector<AxisBox>* bodies) {
   const CollisionMesh& mesh = model.mesh;
   const PrimitiveBoxes now = primitive_boxes(mesh, x0, x1, inflation);
   const int nb = int(model.bodies.size());
@@ -333,7 +333,9 @@ Candidates BroadPhase::find(const Model& model, const Eigen::MatrixX3d& x0, cons
     ++m_version[b];
   });
   PrimitiveBoxes reference{std::move(m_vertex), std::move(m_face), std::move(m_edge)};
-  const std::vector<std::array<int, 2>> pairs = body_pairs(model, body_boxes(model, now.vertex));
+  std::vector<Box> body_box = body_boxes(model, now.vertex);
+  const std::vector<std::array<int, 2>> pairs = body_pairs(model, body_box);
+  if (bodies) *bodies = std::move(body_box);
   // Each body pair's primitive pairs from memory when both bodies kept their reference boxes,
   // else found again at them; then those whose current boxes overlap, in body-pair order.
   std::vector<PairCandidates> next(pairs.size());

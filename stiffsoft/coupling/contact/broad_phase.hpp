@@ -60,9 +60,11 @@ class BroadPhase {
   explicit BroadPhase(double margin) : m_margin(margin) {}
   /// The candidates broad_phase(model, x0, x1, inflation) finds, as a set. With `ungrown`, also
   /// those of broad_phase(model, x0, x1, 0) into it (and a few pairs whose boxes miss by less
-  /// than 1e-9 · inflation), from the same pass.
+  /// than 1e-9 · inflation), from the same pass. With `body_boxes`, each body's box there: the
+  /// union of its vertices' boxes on the segment grown by `inflation` (one that meets nothing
+  /// for a body without vertices).
   Candidates find(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, double inflation,
-                  Candidates* ungrown = nullptr);
+                  Candidates* ungrown = nullptr, std::vector<AxisBox>* body_boxes = nullptr);
   /// Body pairs of the last find() whose primitive pairs were found again (the others came from memory).
   std::size_t refreshed_pairs() const { return m_refreshed; }
   /// Body pairs of the last find().

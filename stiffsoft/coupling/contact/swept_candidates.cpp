@@ -5,12 +5,20 @@
 
 namespace stiffsoft {
 
+namespace {
+/// Segments on which more bodies left their boxes are not served (extension() stops looking):
+/// bodies that move that much are rarely all alone, and a pile in motion pays a Newton
+/// iteration beside which a new broad phase is small.
+constexpr std::size_t kMostMovedBodies = 8;
+}  // namespace
+
 SweptCandidates::SweptCandidates(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
                                  double proximity, double slack, BroadPhase& finder)
     : m_lo(x0.array().min(x1.array())),
       m_hi(x0.array().max(x1.array())),
       m_slack(slack),
-      m_all(finder.find(model, x0, x1, proximity + slack, &m_ccd)) {}
+      m_proximity(proximity),
+      m_all(finder.find(model, x0, x1, proximity + slack, &m_ccd, &m_region)) {}
 
 bool SweptCandidates::covers(const Eigen::MatrixX3d& x) const {
   if (x.rows() != m_lo.rows()) return false;
@@ -23,6 +31,67 @@ bool SweptCandidates::covers(const Eigen::MatrixX3d& x) const {
                (x.middleRows(begin, n).array() <= m_hi.middleRows(begin, n) + m_slack).all();
       },
       [](bool a, bool b) { return a && b; });
+}
+
+std::optional<std::vector<int>> SweptCandidates::extension(const Model& model, const Eigen::MatrixX3d& x0,
+                                                           const Eigen::MatrixX3d& x1) const {
+  if (x0.rows() != m_lo.rows() || x1.rows() != m_lo.rows()) return std::nullopt;
+  const auto inside = [&](Eigen::Index first, Eigen::Index count) {
+    const auto in = [&](const Eigen::MatrixX3d& x) {
+      return (x.middleRows(first, count).array() >= m_lo.middleRows(first, count) - m_slack).all() &&
+             (x.middleRows(first, count).array() <= m_hi.middleRows(first, count) + m_slack).all();
+    };
+    return in(x0) && in(x1);
+  };
+  // Vertices within the slack of their bodies' regions come closer than 2·proximity only where
+  // the regions, grown by proximity + slack, meet. A moved body's region is its box on the
+  // segment; it must meet no other body's, moved or not.
+  const auto meets_another = [&](int b, const AxisBox& grown, const std::vector<AxisBox>& region) {
+    for (std::size_t o = 0; o < region.size(); ++o)
+      if (o != std::size_t(b) && grown.overlaps(region[o])) return true;
+    return false;
+  };
+  // A body that moved mostly moved all its vertices: its first vertex tells, for a fraction of
+  // the cost of all of them, when too many moved or one moved next to another body (a landing).
+  std::size_t first_vertices_out = 0;
+  for (int b = 0; b < int(model.bodies.size()); ++b) {
+    const BodyModel& body = model.bodies[std::size_t(b)];
+    if (body.vertex_end == body.vertex_begin || inside(body.vertex_begin, 1)) continue;
+    if (++first_vertices_out > kMostMovedBodies || body.self_contact() ||
+        meets_another(b, grown_segment_box(body, x0, x1), m_region))
+      return std::nullopt;
+  }
+  std::vector<int> moved;
+  std::vector<AxisBox> region = m_region;
+  for (int b = 0; b < int(model.bodies.size()); ++b) {
+    const BodyModel& body = model.bodies[std::size_t(b)];
+    if (body.vertex_end == body.vertex_begin || inside(body.vertex_begin, body.vertex_end - body.vertex_begin)) continue;
+    if (moved.size() == kMostMovedBodies || body.self_contact()) return std::nullopt;
+    moved.push_back(b);
+    region[std::size_t(b)] = grown_segment_box(body, x0, x1);
+  }
+  for (int b : moved)
+    if (meets_another(b, region[std::size_t(b)], region)) return std::nullopt;
+  return moved;
+}
+
+void SweptCandidates::extend(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
+                             const std::vector<int>& moved) {
+  for (int b : moved) {
+    const BodyModel& body = model.bodies[std::size_t(b)];
+    const Eigen::Index first = body.vertex_begin, count = body.vertex_end - body.vertex_begin;
+    m_lo.middleRows(first, count) = x0.middleRows(first, count).array().min(x1.middleRows(first, count).array());
+    m_hi.middleRows(first, count) = x0.middleRows(first, count).array().max(x1.middleRows(first, count).array());
+    m_region[std::size_t(b)] = grown_segment_box(body, x0, x1);
+  }
+}
+
+AxisBox SweptCandidates::grown_segment_box(const BodyModel& body, const Eigen::MatrixX3d& x0,
+                                           const Eigen::MatrixX3d& x1) const {
+  const Eigen::Index first = body.vertex_begin, count = body.vertex_end - body.vertex_begin;
+  const double growth = m_proximity + m_slack;
+  return AxisBox(x0.middleRows(first, count).array().min(x1.middleRows(first, count).array()).colwise().minCoeff().transpose() - growth,
+                 x0.middleRows(first, count).array().max(x1.middleRows(first, count).array()).colwise().maxCoeff().transpose() + growth);
 }
 
 }  // namespace stiffsoft

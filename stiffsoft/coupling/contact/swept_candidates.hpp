@@ -4,9 +4,12 @@
 /// can come within d̂ anywhere on that segment (and slightly off it), so the line search's
 /// trials and the CCD bound of the same direction reuse them (IPC's use of the CCD broad
 /// phase). A configuration that strays from the segment falls back to a fresh broad phase.
+/// A later segment that keeps every body within the slack of its boxes, or moves only bodies
+/// that stay alone, is served by the same candidates (extension(); a resting pile's moves).
 
 #include <Eigen/Core>
 #include <optional>
+#include <vector>
 
 #include <stiffsoft/coupling/contact/broad_phase.hpp>
 #include <stiffsoft/coupling/model/model.hpp>
@@ -25,6 +28,19 @@ class SweptCandidates {
   /// True when every vertex of x (|V|×3, m) lies within the slack of its swept box, so the
   /// candidates hold every pair of x closer than 2·proximity.
   bool covers(const Eigen::MatrixX3d& x) const;
+  /// Whether the candidates can serve the segment x0 → x1 (|V|×3, m) as well, without a new
+  /// broad phase: every body either lies, at both ends, within the slack of its vertices'
+  /// boxes (its pairs are already here), or is an affine body whose boxes on the segment,
+  /// grown by proximity + slack, come near no other body's (it has no pair). Returns those
+  /// moved bodies for extend(); empty when the segment is not served (a soft body left its
+  /// boxes, a moved body came near another, or more than a few bodies moved).
+  std::optional<std::vector<int>> extension(const Model& model, const Eigen::MatrixX3d& x0,
+                                            const Eigen::MatrixX3d& x1) const;
+  /// Serves the segment x0 → x1 that extension() accepted, which returned `moved`: their
+  /// vertices' boxes become those of the segment, so covers() holds on it. for_ccd() stays
+  /// the first segment's: an extended segment needs no CCD only when no pair of all() can
+  /// close its gap on it (ClearMotion), for which the caller answers.
+  void extend(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, const std::vector<int>& moved);
   /// Every candidate (a superset of the proximity pairs of a covered configuration).
   const Candidates& all() const { return m_all; }
   /// The candidates whose swept boxes overlap without any growth, for the CCD of the segment:
@@ -32,9 +48,15 @@ class SweptCandidates {
   const Candidates& for_ccd() const { return m_ccd; }
 
  private:
+  /// The box of the body's (non-empty) vertices on the segment x0 → x1, grown by proximity + slack.
+  AxisBox grown_segment_box(const BodyModel& body, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1) const;
+
   /// Per-vertex swept box (no growth), for covers(): stored as x is, column by column.
   Eigen::ArrayX3d m_lo, m_hi;
+  /// Per body, the box of its vertices' boxes grown by proximity + slack (the broad phase's).
+  std::vector<AxisBox> m_region;
   double m_slack;              ///< allowed distance of a covered configuration from the swept boxes (m)
+  double m_proximity;          ///< half the distance below which pairs are candidates (m)
   Candidates m_ccd;            ///< for_ccd(), filled by the broad phase that fills m_all
   Candidates m_all;
 };

@@ -160,6 +160,7 @@ double BarrierTerm::max_step(const Configuration& c, const Eigen::VectorXd&, con
   double dummy = 0;
   ScopedTimer timer(m_times ? m_times->ccd : dummy);
   const Eigen::MatrixX3d x1 = c.x + dx;
+  if (keeps_clear(c, x1)) return 1.0;
   // One broad phase for the CCD and every line-search trial of this direction (update()).
   m_swept.emplace(m_model, c.x, x1, 0.5 * m_settings.dhat, 0.01 * m_settings.dhat, m_broad_phase);
   std::vector<double> bound{1.0};
@@ -170,7 +171,9 @@ double BarrierTerm::max_step(const Configuration& c, const Eigen::VectorXd&, con
 void BarrierTerm::join_coupled_blocks(const Configuration& c, const Eigen::MatrixX3d& dx, BlockIslands& islands) const {
   double dummy = 0;
   ScopedTimer timer(m_times ? m_times->ccd : dummy);
-  m_swept.emplace(m_model, c.x, c.x + dx, 0.5 * m_settings.dhat, 0.01 * m_settings.dhat, m_broad_phase);
+  const Eigen::MatrixX3d x1 = c.x + dx;
+  m_move_clear = keeps_clear(c, x1);
+  if (!m_move_clear) m_swept.emplace(m_model, c.x, x1, 0.5 * m_settings.dhat, 0.01 * m_settings.dhat, m_broad_phase);
   const Candidates& all = m_swept->all();
   const CollisionMesh& mesh = m_model.mesh;
   const std::vector<int>& block = m_vertex_block;
@@ -190,7 +193,30 @@ void BarrierTerm::max_step_per_island(const Configuration& c, const Eigen::Vecto
                                       const BlockIslands& islands, std::vector<double>& bound) const {
   double dummy = 0;
   ScopedTimer timer(m_times ? m_times->ccd : dummy);
+  if (m_move_clear) return;
   ccd_bounds(c.x, c.x + dx, islands.count() == 1 ? nullptr : &islands, bound);
+}
+
+bool BarrierTerm::keeps_clear(const Configuration& c, const Eigen::MatrixX3d& x1) const {
+  if (!m_swept) return false;
+  const std::optional<std::vector<int>> moved = m_swept->extension(m_model, c.x, x1);
+  if (!moved || m_constraints_at.rows() != c.x.rows() || m_constraints_at != c.x) return false;
+  // The move's own broad phase would find a subset of these pairs (the moved bodies have none).
+  const ClearMotion clear(m_constraints, c.x, x1, m_settings.dhat, ccd::CcdSettings{});
+  const Candidates& all = m_swept->all();
+  const CollisionMesh& mesh = m_model.mesh;
+  const auto vertex_face_clear = [&](const std::array<int, 2>& k) {
+    return clear.is_clear({k[0], mesh.F(k[1], 0), mesh.F(k[1], 1), mesh.F(k[1], 2)});
+  };
+  const auto edge_edge_clear = [&](const std::array<int, 2>& k) {
+    return clear.is_clear({mesh.E(k[0], 0), mesh.E(k[0], 1), mesh.E(k[1], 0), mesh.E(k[1], 1)});
+  };
+  if (!std::all_of(all.vertex_face.begin(), all.vertex_face.end(), vertex_face_clear) ||
+      !std::all_of(all.edge_edge.begin(), all.edge_edge.end(), edge_edge_clear))
+    return false;
+  m_swept->extend(m_model, c.x, x1, *moved);
+  ++m_kept_moves;
+  return true;
 }
 
 void BarrierTerm::ccd_bounds(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, const BlockIslands* islands,

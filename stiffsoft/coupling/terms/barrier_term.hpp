@@ -55,11 +55,12 @@ class BarrierTerm final : public EnergyTerm {
   bool revise_hessian(const Configuration& c, const Eigen::VectorXd& dq, const Eigen::MatrixX3d& dx,
                       BlockHessian& H) const override;
   /// Conservative CCD over the straight-line motion x → x + dx; its broad phase (grown by
-  /// d̂/2) is kept for update() on the same segment.
+  /// d̂/2) is kept for update() on the same segment. A move the kept candidates serve and on
+  /// which none of their pairs can close its gap (keeps_clear) needs neither: 1.
   double max_step(const Configuration& c, const Eigen::VectorXd& dq, const Eigen::MatrixX3d& dx) const override;
   /// Joins the blocks of every candidate pair of the move's broad phase (grown by d̂/2, as
   /// max_step's): pairs outside it stay farther than d̂ apart along the whole move. Keeps that
-  /// broad phase for max_step_per_island and update().
+  /// broad phase for max_step_per_island and update() (or those kept, as max_step does).
   void join_coupled_blocks(const Configuration& c, const Eigen::MatrixX3d& dx, BlockIslands& islands) const override;
   /// max_step's CCD on join_coupled_blocks' broad phase, each pair's time bounding its island.
   void max_step_per_island(const Configuration& c, const Eigen::VectorXd& dq, const Eigen::MatrixX3d& dx,
@@ -85,6 +86,9 @@ class BarrierTerm final : public EnergyTerm {
   }
   /// Active contacts at the last update.
   const std::vector<ContactConstraint>& constraints() const { return m_constraints; }
+  /// Moves (max_step, join_coupled_blocks) served by the candidates kept from an earlier move,
+  /// without a broad phase or a CCD query, because none of their pairs could close its gap.
+  std::size_t kept_moves() const { return m_kept_moves; }
   /// Smallest distance among active contacts at the last update (m), +∞ with none.
   double min_active_distance(const Configuration& c) const;
   /// Barrier force −κ ∇_x B on every surface vertex, |V|×3 (in energy units; divide by β h² for N).
@@ -111,8 +115,16 @@ class BarrierTerm final : public EnergyTerm {
   std::vector<int> m_vertex_block;  ///< vertex_block of each surface vertex
   /// The run's broad phase, which remembers body pairs' primitive pairs between calls.
   mutable BroadPhase m_broad_phase;
+  /// Whether the kept candidates also serve the move c.x → x1 (SweptCandidates::extension)
+  /// and none of their pairs can close its clearance on it (ClearMotion, with the active set
+  /// at c.x): then every CCD query of the move would return 1, so neither a broad phase nor a
+  /// query is needed (the step's first move in a resting pile). Extends them to the move.
+  bool keeps_clear(const Configuration& c, const Eigen::MatrixX3d& x1) const;
   /// Candidates of the last direction max_step bounded, reused by update() on that segment.
   mutable std::optional<SweptCandidates> m_swept;
+  /// Whether join_coupled_blocks' move was one keeps_clear() kept, for max_step_per_island.
+  mutable bool m_move_clear = false;
+  mutable std::size_t m_kept_moves = 0;  ///< kept_moves()
 };
 
 }  // namespace stiffsoft
