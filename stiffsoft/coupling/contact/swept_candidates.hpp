@@ -32,8 +32,8 @@ class SweptCandidates {
   /// broad phase: every body either lies, at both ends, within the slack of its vertices'
   /// boxes (its pairs are already here), or is an affine body whose boxes on the segment,
   /// grown by proximity + slack, come near no other body's (it has no pair). Returns those
-  /// moved bodies for extend(); empty when the segment is not served (a soft body left its
-  /// boxes, a moved body came near another, or more than a few bodies moved).
+  /// moved bodies (none, often) for extend(); nullopt when the segment is not served (a soft
+  /// body left its boxes, a moved body came near another, or more than a few bodies moved).
   std::optional<std::vector<int>> extension(const Model& model, const Eigen::MatrixX3d& x0,
                                             const Eigen::MatrixX3d& x1) const;
   /// Serves the segment x0 → x1 that extension() accepted, which returned `moved`: their
