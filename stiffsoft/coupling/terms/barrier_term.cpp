@@ -64,7 +64,7 @@ BarrierTerm::BarrierTerm(const Model& model, const BarrierSettings& settings, Ph
 void BarrierTerm::update(const Configuration& c) {
   // The contacts depend on c.x alone (whichever candidate set finds them, the pairs closer
   // than d̂ and their multiplicities are the same).
-  if (m_constraints_at.rows() == c.x.rows() && m_constraints_at == c.x) return;
+  if (built_at(c.x)) return;
   double dummy = 0;
   ScopedTimer timer(m_times ? m_times->broad_phase : dummy);
   if (m_swept && m_swept->covers(c.x)) {
@@ -200,7 +200,7 @@ void BarrierTerm::max_step_per_island(const Configuration& c, const Eigen::Vecto
 bool BarrierTerm::keeps_clear(const Configuration& c, const Eigen::MatrixX3d& x1) const {
   if (!m_swept) return false;
   const std::optional<std::vector<int>> moved = m_swept->extension(m_model, c.x, x1);
-  if (!moved || m_constraints_at.rows() != c.x.rows() || m_constraints_at != c.x) return false;
+  if (!moved || !built_at(c.x)) return false;
   // The move's own broad phase would find a subset of these pairs (the moved bodies have none).
   const ClearMotion clear(m_constraints, c.x, x1, m_settings.dhat, ccd::CcdSettings{});
   const Candidates& all = m_swept->all();
@@ -236,7 +236,7 @@ void BarrierTerm::ccd_bounds(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d&
   // With the active set built at x0, the pairs whose vertices move too little to close their
   // clearance need no query (a resting pile's almost all): skipping them gives the same times.
   std::optional<ClearMotion> clear;
-  if (m_constraints_at.rows() == x0.rows() && m_constraints_at == x0)
+  if (built_at(x0))
     clear.emplace(m_constraints, x0, x1, m_settings.dhat, ccd::CcdSettings{});
   const auto vertex_face_time = [&](std::size_t k, const ccd::CcdSettings& s) {
     const std::array<int, 4> v = vertex_face_vertices(k);

@@ -112,6 +112,8 @@ class BarrierTerm final : public EnergyTerm {
   bool m_balanced = false;
   std::vector<ContactConstraint> m_constraints;
   Eigen::MatrixX3d m_constraints_at;  ///< the surface m_constraints were built at
+  /// Whether m_constraints were built at the surface x (the same numbers).
+  bool built_at(const Eigen::MatrixX3d& x) const { return m_constraints_at.rows() == x.rows() && m_constraints_at == x; }
   std::vector<int> m_vertex_block;  ///< vertex_block of each surface vertex
   /// The run's broad phase, which remembers body pairs' primitive pairs between calls.
   mutable BroadPhase m_broad_phase;
