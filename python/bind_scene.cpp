@@ -306,6 +306,8 @@ void bind_scene(py::module_& m) {
                      "line-search trials turn affine bodies along the rotation group, exp(alpha W) (I + alpha S) A")
       .def_readwrite("island_line_search", &SolverDescription::island_line_search,
                      "each island of uncoupled bodies gets its own CCD bound and line-search step")
+      .def_readwrite("entering_springs", &SolverDescription::entering_springs,
+                     "a direction CCD cuts is solved again with one-sided springs on the pairs entering d-hat")
       .def_readwrite("linear", &SolverDescription::linear, "the linear solver ('auto', 'cholmod', 'petsc', 'petsc:KSP[:PC]')")
       .def_readwrite("krylov_rtol_max", &SolverDescription::krylov_rtol_max, "largest relative residual of a Krylov solve")
       .def_readwrite("rigidity_bound", &SolverDescription::rigidity_bound, "largest |A^T A - I|_F of an affine body before the run stops");

@@ -199,6 +199,7 @@ void bind_simulation(py::module_& m) {
       .def_readonly("smallest_ccd_step", &NewtonReport::smallest_ccd_step, "smallest step bound from CCD")
       .def_readonly("ccd_limited_iterations", &NewtonReport::ccd_limited_iterations, "iterations whose CCD bound was < 1")
       .def_readonly("revised_directions", &NewtonReport::revised_directions, "directions solved again after friction revised its Hessian")
+      .def_readonly("entering_directions", &NewtonReport::entering_directions, "directions solved again with springs on the pairs CCD found entering d-hat")
       .def_readonly("energy", &NewtonReport::energy, "the step's energy at the result (J)")
       .def_readonly("last_step_speed", &NewtonReport::last_step_speed, "largest surface step / h of the last direction (m/s)")
       .def_readonly("linear_iterations", &NewtonReport::linear_iterations, "Krylov iterations (0 for direct solvers)")

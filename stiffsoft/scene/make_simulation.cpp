@@ -53,6 +53,7 @@ SimulationSettings simulation_settings(const SceneDescription& scene, const std:
   s.release_hessian = scene.solver.release_hessian;
   s.geodesic_line_search = scene.solver.geodesic_line_search;
   s.island_line_search = scene.solver.island_line_search;
+  s.entering_springs = scene.solver.entering_springs;
   s.linear_solver = scene.solver.linear;
   s.krylov_rtol_max = scene.solver.krylov_rtol_max;
   s.rigidity_bound = scene.solver.rigidity_bound;

@@ -57,6 +57,7 @@ struct SolverDescription {
   double release_hessian = SimulationSettings{}.release_hessian;  ///< fraction of its Hessian a contact Newton releases keeps, in (0, 1]
   bool geodesic_line_search = SimulationSettings{}.geodesic_line_search;  ///< line-search trials turn affine bodies along the rotation group
   bool island_line_search = SimulationSettings{}.island_line_search;  ///< each island of uncoupled bodies its own CCD bound and step
+  bool entering_springs = SimulationSettings{}.entering_springs;  ///< a direction CCD cuts is solved again with springs on the pairs entering d̂
   std::string linear = SimulationSettings{}.linear_solver;  ///< linear solver backend (see make_linear_solver())
   double krylov_rtol_max = ForcingTermSettings{}.eta_max;  ///< η_max: largest relative residual a Krylov solve may stop at
   double rigidity_bound = SimulationSettings{}.rigidity_bound;  ///< largest ‖AᵀA − I‖_F an affine body may reach before the run stops

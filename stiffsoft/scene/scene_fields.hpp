@@ -95,6 +95,7 @@ void fields(const auto& v, Either<SolverDescription> auto& s) {
   v("release_hessian", s.release_hessian);
   v("geodesic_line_search", s.geodesic_line_search);
   v("island_line_search", s.island_line_search);
+  v("entering_springs", s.entering_springs);
   v("linear", s.linear);
   v("krylov_rtol_max", s.krylov_rtol_max);
   v("rigidity_bound", s.rigidity_bound);

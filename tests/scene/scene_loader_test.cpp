@@ -139,6 +139,7 @@ TEST(SceneLoader, AGoodSceneKeepsEveryValueItGives) {
   EXPECT_EQ(s.solver.release_hessian, 0.8);
   EXPECT_FALSE(s.solver.geodesic_line_search);
   EXPECT_FALSE(s.solver.island_line_search);
+  EXPECT_FALSE(s.solver.entering_springs);
   EXPECT_EQ(s.solver.linear, "cholmod");
   EXPECT_EQ(s.solver.krylov_rtol_max, 0.01);
   EXPECT_EQ(s.output.frame_dt, 0.05);
@@ -248,6 +249,7 @@ void expect_same_scene(const SceneDescription& a, const SceneDescription& b) {
   EXPECT_EQ(a.solver.release_hessian, b.solver.release_hessian);
   EXPECT_EQ(a.solver.geodesic_line_search, b.solver.geodesic_line_search);
   EXPECT_EQ(a.solver.island_line_search, b.solver.island_line_search);
+  EXPECT_EQ(a.solver.entering_springs, b.solver.entering_springs);
   EXPECT_EQ(a.solver.linear, b.solver.linear);
   EXPECT_EQ(a.solver.krylov_rtol_max, b.solver.krylov_rtol_max);
   EXPECT_EQ(a.output.frame_dt, b.output.frame_dt);

@@ -136,6 +136,7 @@ void expect_default_solver(const SolverDescription& solver) {
   EXPECT_EQ(solver.release_hessian, d.release_hessian);
   EXPECT_EQ(solver.geodesic_line_search, d.geodesic_line_search);
   EXPECT_EQ(solver.island_line_search, d.island_line_search);
+  EXPECT_EQ(solver.entering_springs, d.entering_springs);
   EXPECT_EQ(solver.linear, d.linear);
   EXPECT_EQ(solver.krylov_rtol_max, d.krylov_rtol_max);
 }

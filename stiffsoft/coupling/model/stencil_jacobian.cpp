@@ -80,6 +80,17 @@ void StencilJacobian::scatter_gradient(const Eigen::Matrix<double, 12, 1>& g_x, 
   }
 }
 
+Eigen::Matrix<double, 12, 1> StencilJacobian::step(const Eigen::VectorXd& dq) const {
+  Eigen::Matrix<double, 12, 1> dx = Eigen::Matrix<double, 12, 1>::Zero();
+  for (int a = 0; a < 4; ++a) {
+    const int s = slot_of[a];
+    if (s < 0) continue;
+    for (int k = 0; k < weights(columns[s]); ++k)
+      for (int i = 0; i < 3; ++i) dx[3 * a + i] += w[a][k] * dq[offset[s] + kDof[k][i]];
+  }
+  return dx;
+}
+
 void StencilJacobian::block_hessians(const Eigen::Matrix<double, 12, 12>& H_x, StencilHessian& out) const {
   for_block_pairs(*this, out, [&](int t, int s, double* block_ts) {
     const int nk = weights(columns[t]), nl = weights(columns[s]);

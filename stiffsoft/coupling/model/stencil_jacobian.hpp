@@ -44,6 +44,8 @@ struct StencilJacobian {
   /// Builds the map for the given stencil vertices (−1 entries unused).
   StencilJacobian(const Model& model, const std::array<int, 4>& vertices);
 
+  /// J dq: the stencil's packed vertex displacement under the DOF step dq.
+  Eigen::Matrix<double, 12, 1> step(const Eigen::VectorXd& dq) const;
   /// Adds Jᵀ g_x to the global gradient g.
   void scatter_gradient(const Eigen::Matrix<double, 12, 1>& g_x, Eigen::VectorXd& g) const;
   /// Jᵀ H_x J by pairs of DOF blocks, into `out`.

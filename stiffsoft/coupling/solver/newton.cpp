@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include <stiffsoft/coupling/linear_solver/forcing_term.hpp>
+#include <stiffsoft/coupling/solver/entering_springs.hpp>
 
 namespace stiffsoft {
 
@@ -72,6 +73,7 @@ void accumulate(NewtonReport& total, const NewtonReport& next) {
   total.smallest_ccd_step = std::min(total.smallest_ccd_step, next.smallest_ccd_step);
   total.ccd_limited_iterations += next.ccd_limited_iterations;
   total.revised_directions += next.revised_directions;
+  total.entering_directions += next.entering_directions;
   total.energy = next.energy;
   total.last_step_speed = next.last_step_speed;
   total.linear_iterations += next.linear_iterations;
@@ -163,33 +165,6 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
         ++report.revised_directions;
       }
     }
-    report.last_step_speed = (dx.rows() ? dx.rowwise().norm().maxCoeff() : 0.0) / settings.h;
-    // Converged when the direction moves no surface point faster than ε_d and changes no active
-    // contact's gap by more than gap_tolerance of it: a contact pressed deep into the barrier
-    // moves out by only about its own gap per iteration, a move the speed rule alone takes for
-    // convergence. The last (small) step is still taken, as its first trial (CCD-bounded, so
-    // intersection-free) without the energy test: skipping it would freeze a body whose per-step
-    // velocity change is below ε_d, e.g. a block starting to slide, and testing it spent several
-    // halvings on energy changes at round-off (docs/newton.md, session 40).
-    // With stick_tolerance set, it must also move no sticking friction stencil by more than that
-    // fraction of ε_v h: in the stick zone friction's stiffness makes every direction short, so
-    // a block that should break loose from it would otherwise stop there.
-    const bool slow = report.last_step_speed < settings.tolerance;
-    double gap_change = 0, stick_step = 0;
-    if (slow)
-      for (const EnergyTerm* t : terms) {
-        gap_change = std::max(gap_change, t->relative_gap_change(c, dx));
-        if (std::isfinite(settings.stick_tolerance)) stick_step = std::max(stick_step, t->stick_zone_step(c, dx));
-      }
-    const bool small_step = slow && gap_change <= settings.gap_tolerance && stick_step <= settings.stick_tolerance;
-    gap_note.clear();
-    if (slow && gap_change > settings.gap_tolerance)
-      gap_note = " (the last direction was below the speed tolerance but changed a contact's gap by " +
-                 std::to_string(int(std::lround(100 * gap_change))) + " %, above solver.gap_tolerance)";
-    else if (slow && !small_step)
-      gap_note = " (the last direction was below the speed tolerance but moved a sticking friction contact by " +
-                 std::to_string(int(std::lround(100 * stick_step))) + " % of ε_v h, above " +
-                 std::to_string(int(std::lround(100 * settings.stick_tolerance))) + " %)";
     // The largest fraction of a move dq from q that CCD finds free of intersections, per
     // island of the blocks the terms couple on that move (one island without
     // island_line_search, or when a term couples everything).
@@ -226,10 +201,77 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
     // lets some island's chord not move at all), the search goes on along the straight line
     // from the same α: never worse than the line where the energy is not the orthogonality's (a
     // turn far from a rotation, a test energy).
-    const double decrease = std::abs(g.dot(p));  // what the direction's first order promises at α = 1
-    const TrialPath path(model, q, p, settings.geodesic_line_search && !basis, decrease);
-    bool straight = path.straight();
+    std::optional<TrialPath> path;
     std::optional<MoveBounds> line;  // p's bounds, once needed
+    Eigen::VectorXd chord;
+    Eigen::MatrixX3d chord_dx;
+    std::optional<MoveBounds> chord_bounds;
+    const auto bound_chord = [&](double a) {  // leaves q(a) in q_trial
+      path->point(a, q_trial);
+      chord = q_trial - q;
+      chord_dx = model.surface_step(chord);
+      chord_bounds = move_bounds(chord, chord_dx);
+      return chord_bounds->smallest;
+    };
+    // The path along p and the CCD bound of its first trial (α = 1).
+    const auto first_bound = [&] {
+      path.emplace(model, q, p, settings.geodesic_line_search && !basis, std::abs(g.dot(p)));
+      line.reset();
+      chord_bounds.reset();
+      if (!path->straight()) return bound_chord(1.0);
+      line = move_bounds(p, dx);
+      return line->smallest;
+    };
+    double bound = first_bound();
+    // CCD cut the first trial: solve again with springs on the pairs it found entering d̂.
+    std::size_t springs_used = 0;
+    if (settings.entering_springs && bound < 1) {
+      EnteringSprings springs(model);
+      const EnteringSprings::Solve solve_h = [&](const Eigen::VectorXd& g_springs, Eigen::VectorXd& out) {
+        if (holds) H.decouple(held);
+        const bool ok = newton_direction(H, g_springs, solver, analysed, times, basis, out);
+        report.linear_iterations += solver.last_report().iterations;
+        if (ok && holds) hold(out);
+        return ok;
+      };
+      std::vector<EnteringPair> entering;
+      for (const EnergyTerm* t : terms) t->entering_pairs(c, path->straight() ? dx : chord_dx, entering);
+      if (springs.add(entering) > 0 && springs.solve(H, g, solve_h, p)) {
+        dx = model.surface_step(p);
+        bound = first_bound();
+        ++report.entering_directions;
+        springs_used = springs.size();
+      }
+    }
+    report.last_step_speed = (dx.rows() ? dx.rowwise().norm().maxCoeff() : 0.0) / settings.h;
+    // Converged when the direction moves no surface point faster than ε_d and changes no active
+    // contact's gap by more than gap_tolerance of it: a contact pressed deep into the barrier
+    // moves out by only about its own gap per iteration, a move the speed rule alone takes for
+    // convergence. The last (small) step is still taken, as its first trial (CCD-bounded, so
+    // intersection-free) without the energy test: skipping it would freeze a body whose per-step
+    // velocity change is below ε_d, e.g. a block starting to slide, and testing it spent several
+    // halvings on energy changes at round-off (docs/newton.md, session 40).
+    // With stick_tolerance set, it must also move no sticking friction stencil by more than that
+    // fraction of ε_v h: in the stick zone friction's stiffness makes every direction short, so
+    // a block that should break loose from it would otherwise stop there.
+    const bool slow = report.last_step_speed < settings.tolerance;
+    double gap_change = 0, stick_step = 0;
+    if (slow)
+      for (const EnergyTerm* t : terms) {
+        gap_change = std::max(gap_change, t->relative_gap_change(c, dx));
+        if (std::isfinite(settings.stick_tolerance)) stick_step = std::max(stick_step, t->stick_zone_step(c, dx));
+      }
+    const bool small_step = slow && gap_change <= settings.gap_tolerance && stick_step <= settings.stick_tolerance;
+    gap_note.clear();
+    if (slow && gap_change > settings.gap_tolerance)
+      gap_note = " (the last direction was below the speed tolerance but changed a contact's gap by " +
+                 std::to_string(int(std::lround(100 * gap_change))) + " %, above solver.gap_tolerance)";
+    else if (slow && !small_step)
+      gap_note = " (the last direction was below the speed tolerance but moved a sticking friction contact by " +
+                 std::to_string(int(std::lround(100 * stick_step))) + " % of ε_v h, above " +
+                 std::to_string(int(std::lround(100 * settings.stick_tolerance))) + " %)";
+    const double decrease = std::abs(g.dot(p));  // what the direction's first order promises at α = 1
+    bool straight = path->straight();
     std::vector<double> scale;       // straight trials: each island of `line` moves by scale[i] p
     double alpha = 1.0;              // geodesic: the path's α; straight: the largest scale
     const auto go_straight = [&](double a) {  // the straight line from α = a
@@ -239,24 +281,10 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
       for (double& s : scale) s = std::min(s, a);
       alpha = *std::max_element(scale.begin(), scale.end());
     };
-    Eigen::VectorXd chord;
-    std::optional<MoveBounds> chord_bounds;
-    const auto bound_chord = [&](double a) {  // leaves q(a) in q_trial
-      path.point(a, q_trial);
-      chord = q_trial - q;
-      chord_bounds = move_bounds(chord, model.surface_step(chord));
-      return chord_bounds->smallest;
-    };
-    double bound = 1.0;
-    if (straight) {
-      go_straight(1.0);
-      bound = line->smallest;
-    } else {
-      bound = bound_chord(1.0);
-    }
+    if (straight) go_straight(1.0);
     report.smallest_ccd_step = std::min(report.smallest_ccd_step, bound);
     report.ccd_limited_iterations += bound < 1;
-    if (settings.observer) settings.observer({model, terms, c, report.iterations, E, g, H, p, bound});
+    if (settings.observer) settings.observer({model, terms, c, report.iterations, E, g, H, p, bound, springs_used});
     // The order of what rounding a trial's DOFs and evaluating E change E by: a trial that raises
     // E by less has not been shown to raise it. A body held by a joint has a gradient across the
     // directions it cannot move, where rounding q + α p moves it; near convergence that noise
@@ -274,12 +302,12 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
           go_straight(alpha);
           if (alpha <= 0) break;
         } else if (bound < 1) {
-          const double stretch = settings.potential_scale * path.chord_stretch(chord_bounds->islands, chord_bounds->bound, alpha);
+          const double stretch = settings.potential_scale * path->chord_stretch(chord_bounds->islands, chord_bounds->bound, alpha);
           if (stretch >= kChordStretch * alpha * decrease) {
             std::vector<double> own(model.blocks.size());  // each block's α βᵢ
             for (std::size_t b = 0; b < own.size(); ++b)
               own[b] = alpha * chord_bounds->bound[std::size_t(chord_bounds->islands.island(int(b)))];
-            path.point(model, own, q_trial);
+            path->point(model, own, q_trial);
             chord = q_trial - q;
             chord_bounds = move_bounds(chord, model.surface_step(chord));
           }

@@ -41,6 +41,9 @@ struct NewtonSettings {
   /// is cut to its own CCD bound, so that an impact in one island does not shorten the others'
   /// steps; false: one bound for all.
   bool island_line_search = true;
+  /// A direction whose first trial CCD cuts is solved again with a one-sided spring on the gap
+  /// of each pair it found entering d̂ (EnteringSprings); false: taken as it is.
+  bool entering_springs = true;
   ForcingTermSettings forcing;  ///< relative tolerances of Krylov solves (inexact Newton)
   /// DOF blocks held where they are (prescribed motion already in place): their gradient rows
   /// and off-diagonal Hessian blocks are dropped and every direction is zero on them.
@@ -59,9 +62,10 @@ struct NewtonIterate {
   int iteration;                           ///< 0 for the minimisation's first direction
   double energy;                           ///< E(q)
   const Eigen::VectorXd& g;                ///< ∇E(q) (held blocks zeroed)
-  const BlockHessian& H;                   ///< the matrix p was solved with (revised if a term revised it)
+  const BlockHessian& H;                   ///< the matrix p was solved with (revised if a term revised it; without the springs, if any)
   const Eigen::VectorXd& p;                ///< the direction
   double alpha;                            ///< the CCD bound of the first trial, ≤ 1 (the smallest island's): along p, or along the chord to the geodesic path's end (TrialPath)
+  std::size_t springs;                     ///< entering springs p was solved with (EnteringSprings); 0: p solves H p = −g
 };
 
 /// What one minimisation did.
@@ -73,6 +77,7 @@ struct NewtonReport {
   double smallest_ccd_step = 1;  ///< smallest α bound returned by CCD
   int ccd_limited_iterations = 0;  ///< iterations whose CCD bound α was < 1
   int revised_directions = 0;      ///< directions solved again after a term revised its Hessian (friction)
+  int entering_directions = 0;     ///< directions solved again with springs on pairs entering d̂ (EnteringSprings)
   double energy = 0;             ///< E at the result
   double last_step_speed = 0;    ///< max surface step / h of the last direction (m/s)
   int linear_iterations = 0;     ///< Krylov iterations summed over the linear solves (0 for direct solvers)

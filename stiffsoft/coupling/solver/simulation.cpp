@@ -132,6 +132,7 @@ StepStats Simulation::step() {
   ns.max_iterations = m_settings.max_iterations;
   ns.geodesic_line_search = m_settings.geodesic_line_search;
   ns.island_line_search = m_settings.island_line_search;
+  ns.entering_springs = m_settings.entering_springs;
   ns.forcing.eta_max = m_settings.krylov_rtol_max;
   ns.observer = m_newton_observer;
   Eigen::VectorXd q_new = initial_guess(q_tilde, c_n);

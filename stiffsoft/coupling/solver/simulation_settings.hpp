@@ -38,6 +38,7 @@ struct SimulationSettings {
   double release_hessian = BarrierSettings{}.release_hessian;  ///< fraction of its Hessian a contact Newton releases keeps (BarrierSettings::release_hessian)
   bool geodesic_line_search = NewtonSettings{}.geodesic_line_search;  ///< line-search trials turn affine bodies along the rotation group (TrialPath)
   bool island_line_search = NewtonSettings{}.island_line_search;  ///< each island of uncoupled blocks its own CCD bound (BlockIslands)
+  bool entering_springs = NewtonSettings{}.entering_springs;  ///< a direction CCD cuts is solved again with springs on the pairs entering d̂ (EnteringSprings)
   std::string linear_solver = "auto";             ///< linear solver backend (see make_linear_solver())
   double krylov_rtol_max = ForcingTermSettings{}.eta_max;  ///< largest relative residual a Krylov solve may stop at (η_max)
   double kinematic_weight = 1e4;                  ///< inertia weight pulling kinematic bodies onto their path where they cannot be held on it (see Simulation)

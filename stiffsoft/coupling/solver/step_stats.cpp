@@ -14,6 +14,7 @@ const std::vector<StepStatsColumn>& step_stats_columns() {
       {"smallest_ccd_step", [](const StepStats& s) { return s.newton.smallest_ccd_step; }},
       {"ccd_limited_iterations", [](const StepStats& s) { return double(s.newton.ccd_limited_iterations); }},
       {"revised_directions", [](const StepStats& s) { return double(s.newton.revised_directions); }},
+      {"entering_directions", [](const StepStats& s) { return double(s.newton.entering_directions); }},
       {"converged", [](const StepStats& s) { return s.newton.converged ? 1.0 : 0.0; }},
       {"contacts", [](const StepStats& s) { return double(s.contacts); }},
       {"smallest_distance", [](const StepStats& s) { return s.smallest_distance; }},

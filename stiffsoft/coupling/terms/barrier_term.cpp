@@ -12,6 +12,8 @@
 
 #include <stiffsoft/coupling/ccd/ccd.hpp>
 #include <stiffsoft/coupling/contact/clear_motion.hpp>
+#include <stiffsoft/coupling/contact/distance_classification.hpp>
+#include <stiffsoft/coupling/contact/squared_distance.hpp>
 #include <stiffsoft/coupling/contact/projected_barrier_hessian.hpp>
 #include <stiffsoft/coupling/model/stencil_jacobian.hpp>
 #include <stiffsoft/coupling/terms/chunked_assembly.hpp>
@@ -160,6 +162,7 @@ double BarrierTerm::max_step(const Configuration& c, const Eigen::VectorXd&, con
   double dummy = 0;
   ScopedTimer timer(m_times ? m_times->ccd : dummy);
   const Eigen::MatrixX3d x1 = c.x + dx;
+  m_cut.clear();
   if (keeps_clear(c, x1)) return 1.0;
   // One broad phase for the CCD and every line-search trial of this direction (update()).
   m_swept.emplace(m_model, c.x, x1, 0.5 * m_settings.dhat, 0.01 * m_settings.dhat, m_broad_phase);
@@ -172,6 +175,7 @@ void BarrierTerm::join_coupled_blocks(const Configuration& c, const Eigen::Matri
   double dummy = 0;
   ScopedTimer timer(m_times ? m_times->ccd : dummy);
   const Eigen::MatrixX3d x1 = c.x + dx;
+  m_cut.clear();
   m_move_clear = keeps_clear(c, x1);
   if (!m_move_clear) m_swept.emplace(m_model, c.x, x1, 0.5 * m_settings.dhat, 0.01 * m_settings.dhat, m_broad_phase);
   const Candidates& all = m_swept->all();
@@ -195,6 +199,22 @@ void BarrierTerm::max_step_per_island(const Configuration& c, const Eigen::Vecto
   ScopedTimer timer(m_times ? m_times->ccd : dummy);
   if (m_move_clear) return;
   ccd_bounds(c.x, c.x + dx, islands.count() == 1 ? nullptr : &islands, bound);
+}
+
+void BarrierTerm::entering_pairs(const Configuration& c, const Eigen::MatrixX3d&, std::vector<EnteringPair>& out) const {
+  const double dhat2 = m_settings.dhat * m_settings.dhat;
+  for (const CutPair& cut : m_cut) {
+    const std::array<int, 4>& v = cut.vertices;
+    const auto row = [&](int i) -> Eigen::Vector3d { return c.x.row(v[std::size_t(i)]).transpose(); };
+    const contact::Classified k = cut.vertex_face ? contact::classify_point_triangle(row(0), row(1), row(2), row(3))
+                                                  : contact::classify_edge_edge(row(0), row(1), row(2), row(3));
+    const contact::Vector12d sub = contact::gather_classified(k, gather(c.x, v));
+    const double d2 = contact::squared_distance(k.kind, sub);
+    if (d2 < dhat2) continue;  // an active contact: the barrier's model has it
+    const double d = std::sqrt(d2);
+    const contact::Vector12d normal = contact::scatter_classified(k, contact::squared_distance_gradient(k.kind, sub)) / (2 * d);
+    out.push_back({v, cut.vertex_face, normal, d - kEnteringGap * m_settings.dhat});
+  }
 }
 
 bool BarrierTerm::keeps_clear(const Configuration& c, const Eigen::MatrixX3d& x1) const {
@@ -250,39 +270,20 @@ void BarrierTerm::ccd_bounds(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d&
     return ccd::edge_edge_toi(row(x0_rows, v[0]), row(x0_rows, v[1]), row(x0_rows, v[2]), row(x0_rows, v[3]),
                               row(x1_rows, v[0]), row(x1_rows, v[1]), row(x1_rows, v[2]), row(x1_rows, v[3]), s);
   };
-  if (!islands) {
-    // Every query is bounded by the same t_max (1 for the point–triangle pairs, then their
-    // minimum for the edge–edge pairs), never by a time another query found: the time ACCD
-    // returns depends on its bound, so the step bound is then the same whatever the thread
-    // count and the split of the work (and min is exact in any order).
-    const auto smallest_time = [&](std::size_t count, double t_max, const auto& time_of) {
-      return tbb::parallel_reduce(
-          tbb::blocked_range<std::size_t>(0, count, 256), t_max,
-          [&](const tbb::blocked_range<std::size_t>& r, double alpha) {
-            ccd::CcdSettings s;
-            s.t_max = t_max;
-            for (std::size_t k = r.begin(); k < r.end() && alpha > 0; ++k)  // α = 0: nothing can lower it
-              alpha = std::min(alpha, time_of(k, s));
-            return alpha;
-          },
-          [](double a, double b) { return std::min(a, b); });
-    };
-    const double alpha_vf = smallest_time(candidates.vertex_face.size(), 1.0, vertex_face_time);
-    bound[0] = std::min(bound[0], smallest_time(candidates.edge_edge.size(), alpha_vf, edge_edge_time));
-    return;
-  }
-  // Per island, the same bounds as above: its point–triangle pairs with t_max = 1, then its
-  // edge–edge pairs with t_max = their minimum. Each pair's time is kept, then reduced in pair
-  // order, so the bounds do not depend on the thread count.
+  // Per island (one without `islands`): its point–triangle pairs with t_max = 1, then its
+  // edge–edge pairs with t_max = their minimum, never a time another query found (the time
+  // ACCD returns depends on its bound). Each pair's time is kept, then reduced in pair order, so
+  // the bounds do not depend on the thread count and the split of the work.
   const auto island_of = [&](const std::array<int, 4>& vertices) {
     for (int v : vertices) {
       const int b = v < 0 ? -1 : m_vertex_block[std::size_t(v)];
-      if (b >= 0) return islands->island(b);
+      if (b >= 0) return islands ? islands->island(b) : 0;
     }
     return -1;  // no vertex moves: nothing to bound
   };
   std::vector<double> t_max(bound.size(), 1.0);
-  const auto lower = [&](std::size_t count, const auto& vertices_of, const auto& time_of) {
+  m_cut.clear();
+  const auto lower = [&](std::size_t count, const auto& vertices_of, const auto& time_of, bool vertex_face) {
     std::vector<int> island(count);
     std::vector<double> time(count, 1.0);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 256), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -294,11 +295,13 @@ void BarrierTerm::ccd_bounds(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d&
         time[k] = s.t_max > 0 ? time_of(k, s) : 0.0;
       }
     });
+    for (std::size_t k = 0; k < count; ++k)  // stopped before the bound its query looked up to
+      if (island[k] >= 0 && time[k] < t_max[std::size_t(island[k])]) m_cut.push_back({vertices_of(k), vertex_face});
     for (std::size_t k = 0; k < count; ++k)
       if (island[k] >= 0) t_max[std::size_t(island[k])] = std::min(t_max[std::size_t(island[k])], time[k]);
   };
-  lower(candidates.vertex_face.size(), vertex_face_vertices, vertex_face_time);
-  lower(candidates.edge_edge.size(), edge_edge_vertices, edge_edge_time);
+  lower(candidates.vertex_face.size(), vertex_face_vertices, vertex_face_time, true);
+  lower(candidates.edge_edge.size(), edge_edge_vertices, edge_edge_time, false);
   for (std::size_t i = 0; i < bound.size(); ++i) bound[i] = std::min(bound[i], t_max[i]);
 }
 
