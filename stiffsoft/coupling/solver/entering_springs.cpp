@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-
 namespace stiffsoft {
 
 int EnteringSprings::add(const std::vector<EnteringPair>& pairs) {

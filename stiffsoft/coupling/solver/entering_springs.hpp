@@ -3,9 +3,9 @@
 /// with a one-sided spring on each such pair's linearised gap (docs/newton.md, "Springs on the
 /// pairs CCD finds entering"). The barrier is zero beyond d̂, so Newton's model does not know a
 /// pair the step is about to hit; CCD then stops the whole island at a tenth of that pair's gap
-/// and the next iterations push it back out of the barrier's steep part. AL-IPC adds such pairs
-/// to its constraint set (Huang et al. 2025, "TOI locking"); here only the direction changes,
-/// the energy and the line search stay as they are.
+/// and the next iterations push it back out of the barrier's steep part ("TOI locking"; AL-IPC,
+/// arXiv 2512.12151, adds such pairs to its constraints). Here only the direction changes: the
+/// energy and the line search stay as they are.
 
 #include <functional>
 #include <vector>

@@ -205,6 +205,8 @@ void BarrierTerm::entering_pairs(const Configuration& c, const Eigen::MatrixX3d&
   const double dhat2 = m_settings.dhat * m_settings.dhat;
   for (const CutPair& cut : m_cut) {
     const std::array<int, 4>& v = cut.vertices;
+    const auto soft = [&](int u) { return m_model.mesh.vertex_node[std::size_t(u)] >= 0; };
+    if (std::any_of(v.begin(), v.end(), soft)) continue;  // affine and fixed bodies only (see the header)
     const auto row = [&](int i) -> Eigen::Vector3d { return c.x.row(v[std::size_t(i)]).transpose(); };
     const contact::Classified k = cut.vertex_face ? contact::classify_point_triangle(row(0), row(1), row(2), row(3))
                                                   : contact::classify_edge_edge(row(0), row(1), row(2), row(3));
