@@ -65,7 +65,7 @@ TEST(EnteringSprings, StopEachEnteringPairNearItsTargetGapAndDescend) {
     std::vector<double> bound(std::size_t(islands.count()), 1.0);
     for (const EnergyTerm* t : it.terms) t->max_step_per_island(it.c, it.p, dx, islands, bound);
     std::vector<EnteringPair> pairs;
-    for (const EnergyTerm* t : it.terms) t->entering_pairs(it.c, dx, pairs);
+    for (const EnergyTerm* t : it.terms) t->entering_pairs(it.c, pairs);
     if (pairs.empty()) return;
     ++directions;
     for (const EnteringPair& e : pairs) {
@@ -94,9 +94,8 @@ TEST(EnteringSprings, StopEachEnteringPairNearItsTargetGapAndDescend) {
       p = ldlt.solve(-g);
       return true;
     };
-    EnteringSprings springs(it.model);
-    ASSERT_EQ(springs.add(pairs), int(pairs.size()));
-    EXPECT_EQ(springs.add(pairs), 0);  // held already
+    EnteringSprings springs(it.model, pairs);
+    ASSERT_EQ(springs.size(), pairs.size());
     Eigen::VectorXd p = it.p;
     if (!springs.solve(H, it.g, solve, p)) return;  // kept the direction: not a descent one
     EXPECT_LT(it.g.dot(p), 0.0);

@@ -1,14 +1,13 @@
 #include <stiffsoft/coupling/solver/entering_springs.hpp>
 
 #include <algorithm>
+#include <utility>
 
 namespace stiffsoft {
 
-int EnteringSprings::add(const std::vector<EnteringPair>& pairs) {
-  int added = 0;
-  for (const EnteringPair& e : pairs) {
-    const auto same = [&](const EnteringPair& held) { return held.vertices == e.vertices; };
-    if (std::any_of(m_pairs.begin(), m_pairs.end(), same)) continue;
+EnteringSprings::EnteringSprings(const Model& model, std::vector<EnteringPair> pairs)
+    : m_model(model), m_pairs(std::move(pairs)) {
+  for (const EnteringPair& e : m_pairs) {
     const StencilJacobian& J = m_jacobians.emplace_back(m_model, e.vertices);
     double mass = 0;  // of what moves: fixed bodies and nodes carry no DOFs
     for (int a = 0; a < 4; ++a) {
@@ -17,11 +16,8 @@ int EnteringSprings::add(const std::vector<EnteringPair>& pairs) {
       mass = std::max(mass, node >= 0 ? m_model.nodes.mass[node]
                                       : m_model.bodies[std::size_t(m_model.mesh.vertex_body[std::size_t(v)])].mass);
     }
-    m_pairs.push_back(e);
     m_stiffness.push_back(kSpringScale * mass);
-    ++added;
   }
-  return added;
 }
 
 void EnteringSprings::add_hessian(std::size_t i, double sign, BlockHessian& H) const {

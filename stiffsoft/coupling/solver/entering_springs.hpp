@@ -40,11 +40,8 @@ class EnteringSprings {
   /// Solves H p = −g for a given g: Newton's linear solve on the current H.
   using Solve = std::function<bool(const Eigen::VectorXd& g, Eigen::VectorXd& p)>;
 
-  /// No springs yet.
-  explicit EnteringSprings(const Model& model) : m_model(model) {}
-
-  /// Adds the pairs not already held (the same four vertices); returns how many were new.
-  int add(const std::vector<EnteringPair>& pairs);
+  /// A spring on each of the pairs.
+  EnteringSprings(const Model& model, std::vector<EnteringPair> pairs);
 
   /// Minimises the model over p with H (Newton's, revised) and g, starting from every spring
   /// acting, by up to kRounds solves; replaces p and returns true when every solve succeeded

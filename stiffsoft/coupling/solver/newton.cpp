@@ -204,13 +204,11 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
     std::optional<TrialPath> path;
     std::optional<MoveBounds> line;  // p's bounds, once needed
     Eigen::VectorXd chord;
-    Eigen::MatrixX3d chord_dx;
     std::optional<MoveBounds> chord_bounds;
     const auto bound_chord = [&](double a) {  // leaves q(a) in q_trial
       path->point(a, q_trial);
       chord = q_trial - q;
-      chord_dx = model.surface_step(chord);
-      chord_bounds = move_bounds(chord, chord_dx);
+      chord_bounds = move_bounds(chord, model.surface_step(chord));
       return chord_bounds->smallest;
     };
     // The path along p and the CCD bound of its first trial (α = 1).
@@ -226,7 +224,9 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
     // CCD cut the first trial: solve again with springs on the pairs it found entering d̂.
     std::size_t springs_used = 0;
     if (settings.entering_springs && bound < 1) {
-      EnteringSprings springs(model);
+      std::vector<EnteringPair> entering;
+      for (const EnergyTerm* t : terms) t->entering_pairs(c, entering);
+      EnteringSprings springs(model, std::move(entering));
       const EnteringSprings::Solve solve_h = [&](const Eigen::VectorXd& g_springs, Eigen::VectorXd& out) {
         if (holds) H.decouple(held);
         const bool ok = newton_direction(H, g_springs, solver, analysed, times, basis, out);
@@ -234,9 +234,7 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
         if (ok && holds) hold(out);
         return ok;
       };
-      std::vector<EnteringPair> entering;
-      for (const EnergyTerm* t : terms) t->entering_pairs(c, path->straight() ? dx : chord_dx, entering);
-      if (springs.add(entering) > 0 && springs.solve(H, g, solve_h, p)) {
+      if (springs.size() > 0 && springs.solve(H, g, solve_h, p)) {
         dx = model.surface_step(p);
         bound = first_bound();
         ++report.entering_directions;

@@ -201,7 +201,7 @@ void BarrierTerm::max_step_per_island(const Configuration& c, const Eigen::Vecto
   ccd_bounds(c.x, c.x + dx, islands.count() == 1 ? nullptr : &islands, bound);
 }
 
-void BarrierTerm::entering_pairs(const Configuration& c, const Eigen::MatrixX3d&, std::vector<EnteringPair>& out) const {
+void BarrierTerm::entering_pairs(const Configuration& c, std::vector<EnteringPair>& out) const {
   const double dhat2 = m_settings.dhat * m_settings.dhat;
   for (const CutPair& cut : m_cut) {
     const std::array<int, 4>& v = cut.vertices;

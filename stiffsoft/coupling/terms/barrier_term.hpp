@@ -66,13 +66,13 @@ class BarrierTerm final : public EnergyTerm {
   void max_step_per_island(const Configuration& c, const Eigen::VectorXd& dq, const Eigen::MatrixX3d& dx,
                            const BlockIslands& islands, std::vector<double>& bound) const override;
   /// The pairs farther than d̂ at c (so without a barrier term yet) whose CCD time on the move
-  /// dx, as the move's max_step or max_step_per_island found it, fell below the bound its query
+  /// last bounded, as its max_step or max_step_per_island found it, fell below the bound its query
   /// looked up to (1 for a point–triangle pair, the island's point–triangle bound for an
   /// edge–edge pair); each with its gap's slack down to kEnteringGap d̂. None when the move was
   /// kept clear (keeps_clear). Pairs between affine and fixed bodies only: a spring holds only
   /// the soft node CCD found, and its neighbours hit next (a soft ball landing on boxes took 11
   /// cut directions and 16 iterations in one step with them, 3 and 6 without; docs/newton.md).
-  void entering_pairs(const Configuration& c, const Eigen::MatrixX3d& dx, std::vector<EnteringPair>& out) const override;
+  void entering_pairs(const Configuration& c, std::vector<EnteringPair>& out) const override;
   /// The gap, as a fraction of d̂, down to which an entering pair's spring lets it close: inside
   /// the barrier's reach, so that the next direction's model has the pair (docs/newton.md,
   /// session 44: 0.5, 0.8 and 0.9 measured on medium and full at h = 1/240).

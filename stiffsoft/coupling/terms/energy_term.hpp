@@ -56,12 +56,11 @@ class EnergyTerm {
     const double alpha = max_step(c, dq, dx);
     for (double& b : bound) b = std::min(b, alpha);
   }
-  /// Appends to `out` the pairs outside this term's reach that the move dx from c brings
-  /// closer than CCD lets it (time below 1), for the one-sided springs Newton solves such a
-  /// direction again with (solver/entering_springs.hpp). Called right after max_step or
-  /// join_coupled_blocks for the same move, whose broad phase it may reuse. The default has none.
-  virtual void entering_pairs(const Configuration&, const Eigen::MatrixX3d& /*dx*/,
-                              std::vector<EnteringPair>& /*out*/) const {}
+  /// Appends to `out` the pairs outside this term's reach that the move last bounded from c
+  /// (max_step, or join_coupled_blocks then max_step_per_island) brings closer than CCD lets it
+  /// (time below 1), for the one-sided springs Newton solves such a direction again with
+  /// (solver/entering_springs.hpp). The default has none.
+  virtual void entering_pairs(const Configuration&, std::vector<EnteringPair>& /*out*/) const {}
   /// Called with each Newton direction dq (surface step dx) and the Hessian H it was solved
   /// with. A term whose Hessian model should depend on where the step goes (friction: a slide
   /// the full step would reverse) may add the change of its model to H and return true; Newton
