@@ -105,13 +105,20 @@ void BodyStateWriter::add_state(int step, const Simulation& sim) {
   dirty_ = true;
 }
 
-void BodyStateWriter::reload(CsvRows rows) {
-  rows_ = std::move(rows.text);
-  on_disk_ = false;  // the next flush rewrites the file with exactly these rows
+void BodyStateWriter::reload(const CsvEnd& end) {
+  rows_.clear();
+  kept_ = end.length;
+  on_disk_ = false;  // the next flush cuts the file after these rows
   dirty_ = true;
 }
 
 void BodyStateWriter::flush() {
+  if (!on_disk_ && kept_ > 0) {
+    std::error_code error;
+    std::filesystem::resize_file(file_, kept_, error);
+    if (error) throw std::runtime_error("cannot cut " + file_.string() + " to its resumed rows: " + error.message());
+    on_disk_ = true;
+  }
   if (!on_disk_) {
     write_file_atomically(file_, [&](std::ostream& out) {
       const auto& columns = body_state_columns();

@@ -23,7 +23,8 @@ namespace stiffsoft {
 /// Rows are kept in memory until flush() (and destruction): the first flush writes the file
 /// atomically (stiffsoft/io/atomic_file.hpp), later ones append the new rows in one write, so a
 /// long run's file is never rewritten. A process killed during an append can leave a partial
-/// last line; a resumed run (reload()) keeps whole rows only.
+/// last line; a resumed run (reload()) keeps whole rows only, cutting the file after them at
+/// its first flush, so that resuming reads and holds none of the rows it keeps.
 class BodyStateWriter {
  public:
   /// `file`: the .csv to (re)write; its folder must exist. Nothing is written before flush().
@@ -38,14 +39,16 @@ class BodyStateWriter {
   /// Puts every row so far on disk (header and rows the first time, then appending); throws
   /// std::runtime_error naming the file on I/O failure.
   void flush();
-  /// Continues a resumed run: takes `rows` (csv_rows_through_step of this file, read before
-  /// the writer existed) as the rows so far.
-  void reload(CsvRows rows);
+  /// Continues a resumed run: the file's first `end.length` bytes (csv_end_through_step of
+  /// this file, read before the writer existed) are its header and the rows so far; the next
+  /// flush cuts the file there and appends.
+  void reload(const CsvEnd& end);
 
  private:
   std::filesystem::path file_;  ///< the .csv
   std::string rows_;            ///< rows not yet on disk, '\n'-terminated
   bool on_disk_ = false;        ///< the file holds the header and the rows flushed so far
+  std::uintmax_t kept_ = 0;     ///< a resumed run's bytes to keep (reload()), cut at the next flush
   bool dirty_ = true;           ///< rows (or the header) not yet on disk
 };
 

@@ -65,15 +65,18 @@ Recorder::ResumeCheck Recorder::checked_resume(const std::filesystem::path& out,
     throw ResumeError(out.string() + ": the scene (its settings or a mesh file) changed since the checkpoint; " +
                       "run it again without --resume, into a new folder");
   const int step = checkpoint.state.step;
-  const auto through_step = [&](const std::filesystem::path& file, const std::vector<std::string>& columns) {
-    CsvRows rows = csv_rows_through_step(file, columns, step);
+  // stats.csv and bodies.csv must reach the checkpoint's step; bodies.csv, a long run's
+  // largest file, is read only back from its end.
+  const auto reaching_step = [&](const std::filesystem::path& file, auto rows) {
     if (rows.last_step != step)
       throw ResumeError(file.string() + ": holds steps up to " + std::to_string(rows.last_step) +
                         ", the checkpoint is at step " + std::to_string(step) + " (damaged output folder)");
     return rows;
   };
-  ResumeCheck check{fingerprint, through_step(out / "stats.csv", step_stats_column_names()),
-                    through_step(out / "bodies.csv", body_state_columns()), std::nullopt};
+  ResumeCheck check{fingerprint,
+                    reaching_step(out / "stats.csv", csv_rows_through_step(out / "stats.csv", step_stats_column_names(), step)),
+                    reaching_step(out / "bodies.csv", csv_end_through_step(out / "bodies.csv", body_state_columns(), step)),
+                    std::nullopt};
   if (!scene.joints.empty()) check.joints = csv_rows_through_step(out / "joints.csv", joint_columns(), step);
   return check;
 }
@@ -97,7 +100,7 @@ Recorder::Recorder(const std::filesystem::path& out, const SceneDescription& sce
   if (sim.time() != 0) throw std::invalid_argument("Recorder: a run is resumed into a simulation at t = 0");
   remove_stale_temporaries(out);  // a killed writer's half-written files
   m_stats.reload(std::move(check.stats));
-  m_bodies.reload(std::move(check.bodies));
+  m_bodies.reload(check.bodies);
   if (check.joints) {
     m_joints.emplace(out / "joints.csv", joint_columns());
     m_joints->reload(std::move(*check.joints));

@@ -77,7 +77,8 @@ class Recorder {
   /// the CSV files' rows up to the checkpoint's step.
   struct ResumeCheck {
     std::uint64_t scene_fingerprint;
-    CsvRows stats, bodies;
+    CsvRows stats;
+    CsvEnd bodies;
     std::optional<CsvRows> joints;
   };
   /// Checks the scene against the checkpoint and reads the CSV files' rows up to its step
