@@ -1,8 +1,9 @@
 /// @file newton_trace: one CSV row per Newton direction of a run (issue 17's diagnosis of the
 /// steps' tails, docs/newton.md, session 36). It continues a run from its checkpoint (or starts
 /// the scene) and records, for every direction p of the chosen steps:
-///  - the step, the direction's index in it, the CCD bound α on the step along p, the speed
-///    max_k ‖(Φp)_k‖ / h that Newton's stopping rule compares with ε_d, ‖g‖ and E;
+///  - the step, the direction's index in it, how many entering springs it was solved with, the
+///    CCD bound α on the step along p, the speed max_k ‖(Φp)_k‖ / h that Newton's stopping rule
+///    compares with ε_d and the body of that surface point, ‖g‖ and E;
 ///  - friction's stick/slip changes up to the iterate and after the step along p is accepted,
 ///    and its sticking and sliding stencils at the iterate;
 ///  - E(q + s p) − E(q) for s = 1, 1.5, 2 and 3 where CCD admits the whole step s p (empty
@@ -40,6 +41,8 @@ constexpr std::array<double, 4> kLineSamples{1.0, 1.5, 2.0, 3.0};
 /// One Newton direction's row.
 struct Row {
   int step = 0, iteration = 0;
+  std::size_t springs = 0;  ///< entering springs the direction was solved with
+  int fastest_body = -1;    ///< the body of the surface point p moves most
   double alpha = 0, speed = 0, gradient_norm = 0, energy = 0;
   int flips_before = 0, flips_after = 0, sticking = 0, sliding = 0;
   std::array<double, kLineSamples.size()> line{NAN, NAN, NAN, NAN};  ///< E(q + s p) − E(q)
@@ -113,7 +116,7 @@ int main(int argc, char** argv) {
     std::ofstream out(csv);
     out.precision(17);
     if (!out) throw std::runtime_error(csv + ": cannot be written");
-    out << "step,iteration,alpha,speed,gradient_norm,energy,flips_before,flips_after,sticking,sliding";
+    out << "step,iteration,springs,alpha,speed,fastest_body,gradient_norm,energy,flips_before,flips_after,sticking,sliding";
     for (double s : kLineSamples) out << ",line_" << s;
     out << ",contacts,halving,leaving,gap_speed,gap_start,gap_ratio\n";
     const double h = sim.settings().h;
@@ -122,9 +125,14 @@ int main(int argc, char** argv) {
       Row row;
       row.step = sim.state().step + 1;
       row.iteration = it.iteration;
+      row.springs = it.springs;
       row.alpha = it.alpha;
       const Eigen::MatrixX3d dx = it.model.surface_step(it.p);
-      row.speed = (dx.rows() ? dx.rowwise().norm().maxCoeff() : 0.0) / h;
+      if (dx.rows()) {
+        Eigen::Index fastest = 0;
+        row.speed = dx.rowwise().norm().maxCoeff(&fastest) / h;
+        row.fastest_body = it.model.mesh.vertex_body[std::size_t(fastest)];
+      }
       row.gradient_norm = it.g.norm();
       row.energy = it.energy;
       if (const FrictionTerm* friction = find_term<FrictionTerm>(it)) {
@@ -144,8 +152,8 @@ int main(int argc, char** argv) {
       for (std::size_t i = 0; i < rows.size(); ++i)
         rows[i].flips_after = i + 1 < rows.size() ? rows[i + 1].flips_before : stats.stick_slip_flips;
       for (const Row& r : rows) {
-        out << r.step << ',' << r.iteration << ',' << r.alpha << ',' << r.speed << ',' << r.gradient_norm << ','
-            << r.energy << ',' << r.flips_before << ',' << r.flips_after << ',' << r.sticking << ',' << r.sliding;
+        out << r.step << ',' << r.iteration << ',' << r.springs << ',' << r.alpha << ',' << r.speed << ','
+            << r.fastest_body << ',' << r.gradient_norm << ',' << r.energy << ',' << r.flips_before << ',' << r.flips_after << ',' << r.sticking << ',' << r.sliding;
         for (double v : r.line) {
           out << ',';
           if (!std::isnan(v)) out << v;
