@@ -270,14 +270,12 @@ namespace scene_fields {
 // The keys the schema allows for this primitive (its `when` conditions), so the resolved JSON
 // never lists a key the loader would reject.
 bool primitive_uses(const std::string& key, PrimitiveShape::Type type) {
-  const std::string primitive = enum_name(type);
-  for (const auto& entry : scene_schema()) {
-    if (entry.at("pointer") != "/bodies/*/mesh/" + key) continue;
-    if (!entry.contains("when")) return true;
-    const Json& values = entry["when"].at("primitive");
-    return std::find(values.begin(), values.end(), primitive) != values.end();
-  }
-  return false;
+  const auto& entries = scene_schema_entries("/bodies/*/mesh/" + key);
+  if (entries.empty()) return false;
+  const Json& entry = *entries.front();
+  if (!entry.contains("when")) return true;
+  const Json& values = entry["when"].at("primitive");
+  return std::find(values.begin(), values.end(), enum_name(type)) != values.end();
 }
 
 }  // namespace scene_fields

@@ -1,6 +1,8 @@
 #include <stiffsoft/scene/scene_schema.hpp>
 
+#include <algorithm>
 #include <stdexcept>
+#include <unordered_map>
 #include <vector>
 
 #include <Eigen/Core>
@@ -341,11 +343,47 @@ Json with_struct_defaults(Json schema) {
   return schema;
 }
 
+/// The schema's entries by pointer, and the children of every object entry by its pointer.
+struct SchemaIndex {
+  std::unordered_map<std::string, std::vector<const Json*>> entries;
+  std::unordered_map<std::string, std::vector<SchemaChild>> children;
+};
+
+const SchemaIndex& schema_index() {
+  static const SchemaIndex index = [] {
+    SchemaIndex built;
+    for (const Json& entry : scene_schema()) {
+      const std::string pointer = entry.at("pointer");
+      built.entries[pointer].push_back(&entry);
+      const std::size_t slash = pointer.rfind('/');
+      const std::string key = pointer.substr(slash + 1);
+      if (key.empty()) continue;
+      std::vector<SchemaChild>& siblings = built.children[slash == 0 ? "/" : pointer.substr(0, slash)];
+      if (std::none_of(siblings.begin(), siblings.end(), [&](const SchemaChild& c) { return c.first == key; }))
+        siblings.emplace_back(key, &entry);
+    }
+    return built;
+  }();
+  return index;
+}
+
 }  // namespace
 
 const nlohmann::ordered_json& scene_schema() {
   static const Json schema = with_struct_defaults(Json::parse(kSchemaText));
   return schema;
+}
+
+const std::vector<const nlohmann::ordered_json*>& scene_schema_entries(const std::string& pointer) {
+  static const std::vector<const Json*> none;
+  const auto found = schema_index().entries.find(pointer);
+  return found == schema_index().entries.end() ? none : found->second;
+}
+
+const std::vector<SchemaChild>& scene_schema_children(const std::string& pointer) {
+  static const std::vector<SchemaChild> none;
+  const auto found = schema_index().children.find(pointer);
+  return found == schema_index().children.end() ? none : found->second;
 }
 
 std::string schema_list_text(const nlohmann::ordered_json& list, const std::string& separator) {

@@ -9,6 +9,8 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -50,6 +52,18 @@ class SceneError : public std::runtime_error {
 /// description structs are the values of default-constructed structs (TimeDescription{},
 /// BodyDescription{}, ...). Parsed once, on the first call.
 const nlohmann::ordered_json& scene_schema();
+
+/// The schema's entries with this pointer (`/bodies/*/density`), in document order: one, or
+/// more where the schema gives alternatives; none for a pointer it does not have. Looked up in
+/// an index built once, on the first call (a scene of 562 bodies looks up thousands).
+const std::vector<const nlohmann::ordered_json*>& scene_schema_entries(const std::string& pointer);
+
+/// A key of an object entry and its first schema entry.
+using SchemaChild = std::pair<std::string, const nlohmann::ordered_json*>;
+
+/// The direct children of the object entry at `pointer` (`/` for the root), each key once with
+/// its first entry, in document order; none for a pointer without children. From the same index.
+const std::vector<SchemaChild>& scene_schema_children(const std::string& pointer);
 
 /// A list of the schema (`options`, `extensions`, `when` values) as text for messages and docs:
 /// strings as they are, anything else as JSON, joined by `separator`.

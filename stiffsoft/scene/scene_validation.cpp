@@ -117,17 +117,10 @@ class Validator {
     throw SceneError(file_, path, what);
   }
 
-  static std::vector<const Json*> entries_at(const std::string& pointer) {
-    std::vector<const Json*> found;
-    for (const auto& entry : scene_schema())
-      if (entry.at("pointer") == pointer) found.push_back(&entry);
-    return found;
-  }
-
   // The schema entry for this value; where the schema gives alternatives, the one whose
   // type fits.
   const Json& pick_entry(const Json& value, const std::string& pointer, const std::string& path) const {
-    const auto entries = entries_at(pointer);
+    const auto& entries = scene_schema_entries(pointer);
     std::string expected;
     for (const Json* entry : entries) {
       if (type_matches(*entry, value)) return *entry;
@@ -188,22 +181,6 @@ class Validator {
     return resolved.string();
   }
 
-  // The ordered, de-duplicated direct children of an object entry.
-  static std::vector<std::pair<std::string, const Json*>> children_of(const std::string& pointer) {
-    std::vector<std::pair<std::string, const Json*>> children;
-    const std::string prefix = pointer == "/" ? "/" : pointer + "/";
-    for (const auto& entry : scene_schema()) {
-      const std::string p = entry.at("pointer");
-      if (p.size() <= prefix.size() || p.compare(0, prefix.size(), prefix) != 0) continue;
-      const std::string key = p.substr(prefix.size());
-      if (key.find('/') != std::string::npos) continue;
-      const bool seen = std::any_of(children.begin(), children.end(),
-                                    [&](const auto& child) { return child.first == key; });
-      if (!seen) children.emplace_back(key, &entry);
-    }
-    return children;
-  }
-
   // Whether a `when` condition holds: the sibling's value (given or default) is listed.
   static bool condition_holds(const Json& entry, const Json& object, const std::string& pointer) {
     if (!entry.contains("when")) return true;
@@ -212,7 +189,7 @@ class Validator {
       if (object.contains(sibling)) {
         sibling_value = object[sibling];
       } else {
-        for (const Json* e : entries_at(child_pointer(pointer, sibling)))
+        for (const Json* e : scene_schema_entries(child_pointer(pointer, sibling)))
           if (e->contains("default")) sibling_value = (*e)["default"];
       }
       if (std::find(values.begin(), values.end(), sibling_value) == values.end()) return false;
@@ -222,7 +199,7 @@ class Validator {
 
   Json validate_object(const Json& value, const Json& /*entry*/, const std::string& pointer,
                        const std::string& path) const {
-    const auto children = children_of(pointer);
+    const auto& children = scene_schema_children(pointer);
     std::string allowed;
     for (const auto& child : children) allowed += (allowed.empty() ? "" : ", ") + child.first;
     // Unknown keys first, in the order written, so a typo is reported as such rather than
