@@ -15,7 +15,7 @@ namespace stiffsoft {
 /// Splits argv (split_petsc_arguments()) and starts PETSc with its half when there is one, or
 /// when an MPI launcher started the process (every rank must join MPI at once). Otherwise PETSc
 /// starts on first use (ensure_petsc_initialized()), so that a run without a PETSc solver, and
-/// `--help`, skip MPI's start (0.14 s of `stiffsoft --version`'s 0.65 s). Create one at the top
+/// `--help`, skip MPI's start (0.4 s of `stiffsoft --version`'s 0.65 s). Create one at the top
 /// of main(), before anything parses the command line:
 ///
 ///     stiffsoft::PetscCommandLine petsc(argc, argv);  // takes -ksp_type cg, -log_view, …
