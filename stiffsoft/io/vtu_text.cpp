@@ -3,7 +3,9 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <array>
 #include <cstring>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
@@ -46,6 +48,19 @@ class Deflater {
   z_stream m_stream{};
 };
 
+/// The level-1 deflate stream of this thread for a block of `bytes` bytes: a window of
+/// 2^w ≥ bytes (9 ≤ w ≤ 15) and a hash table of 2^w entries (mem_level w − 7), no larger than
+/// the block needs. Every reset clears the table: at zlib's default (w = 15, 64 KiB) that was
+/// three quarters of writing a pile's frame, whose arrays are a few hundred bytes each.
+Deflater& deflater_for(std::size_t bytes) {
+  thread_local std::array<std::unique_ptr<Deflater>, 7> by_window;
+  int w = 9;
+  while (w < MAX_WBITS && (std::size_t(1) << w) < bytes) ++w;
+  std::unique_ptr<Deflater>& d = by_window[std::size_t(w - 9)];
+  if (!d) d = std::make_unique<Deflater>(Z_BEST_SPEED, w, w - 7);
+  return *d;
+}
+
 /// Whether deflate is worth its time on a block: at least a quarter of its bytes are zero. The
 /// arrays that compress well are integers (the cells) and mostly zero forces; the positions
 /// and velocities of moving bodies shrink by 0–20 % at 20–40 times the time of storing them
@@ -68,7 +83,6 @@ std::string array_tag(const char* element, const char* type, const std::string& 
 VtuText::VtuText(std::int64_t points, std::int64_t cells) : m_points(points), m_cells(cells) {}
 
 std::size_t VtuText::append(const void* data, std::size_t bytes) {
-  thread_local Deflater deflate(Z_BEST_SPEED, MAX_WBITS, 8);
   thread_local Deflater store(Z_NO_COMPRESSION, 9, 1);
   const std::size_t offset = m_appended.size();
   const std::size_t blocks = (bytes + kBlockSize - 1) / kBlockSize;
@@ -81,7 +95,7 @@ std::size_t VtuText::append(const void* data, std::size_t bytes) {
   for (std::size_t b = 0; b < blocks; ++b) {
     const unsigned char* block = begin + b * kBlockSize;
     const std::size_t block_bytes = std::min(kBlockSize, bytes - b * kBlockSize);
-    Deflater& deflater = worth_deflating(block, block_bytes) ? deflate : store;
+    Deflater& deflater = worth_deflating(block, block_bytes) ? deflater_for(block_bytes) : store;
     const std::uint64_t size = deflater.compress(block, block_bytes, m_appended);
     std::memcpy(m_appended.data() + sizes_at + b * sizeof size, &size, sizeof size);
   }
