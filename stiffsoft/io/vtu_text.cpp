@@ -51,7 +51,7 @@ class Deflater {
 /// The level-1 deflate stream of this thread for a block of `bytes` bytes: a window of
 /// 2^w ≥ bytes (9 ≤ w ≤ 15) and a hash table of 2^w entries (mem_level w − 7), no larger than
 /// the block needs. Every reset clears the table: at zlib's default (w = 15, 64 KiB) that was
-/// three quarters of writing a pile's frame, whose arrays are a few hundred bytes each.
+/// two thirds of writing a pile's frame, whose arrays are a few hundred bytes each.
 Deflater& deflater_for(std::size_t bytes) {
   thread_local std::array<std::unique_ptr<Deflater>, 7> by_window;
   int w = 9;
