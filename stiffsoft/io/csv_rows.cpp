@@ -38,27 +38,6 @@ bool step_of(const char* begin, const char* end, int& step) {
 
 }  // namespace
 
-CsvRows csv_rows_through_step(const std::filesystem::path& file, const std::vector<std::string>& columns, int last_step) {
-  const std::string header = header_line(columns);
-  std::ifstream in = checked_file(file, header);
-  const std::uintmax_t size = std::filesystem::file_size(file);
-  std::string bytes(size - header.size(), '\0');
-  in.read(bytes.data(), std::streamsize(bytes.size()));
-  bytes.resize(std::size_t(in.gcount()));
-  CsvRows rows;
-  for (std::size_t begin = 0; begin < bytes.size();) {
-    const std::size_t end = bytes.find('\n', begin);
-    if (end == std::string::npos) break;  // not a whole line
-    int step = 0;
-    if (!step_of(bytes.data() + begin, bytes.data() + end, step) || step > last_step) break;
-    rows.text.append(bytes, begin, end + 1 - begin);
-    ++rows.count;
-    rows.last_step = step;
-    begin = end + 1;
-  }
-  return rows;
-}
-
 CsvEnd csv_end_through_step(const std::filesystem::path& file, const std::vector<std::string>& columns, int last_step) {
   const std::string header = header_line(columns);
   std::ifstream in = checked_file(file, header);
@@ -81,8 +60,10 @@ CsvEnd csv_end_through_step(const std::filesystem::path& file, const std::vector
       // The last line is text's tail after that '\n' (or all of text at the header).
       const std::size_t begin = newline == std::string::npos ? 0 : newline + 1;
       int step = 0;
-      if (step_of(text.data() + begin, text.data() + text.size(), step) && step <= last_step)
-        return {to + 1, step};
+      if (!step_of(text.data() + begin, text.data() + text.size(), step))
+        throw ResumeError(file.string() + ": a line that does not start with a step number (a damaged file, or a name " +
+                          "with a line break), so the run cannot be resumed");
+      if (step <= last_step) return {to + 1, step};
       to = from + begin - 1;  // the '\n' before it, or the header's
       text.resize(begin == 0 ? 0 : begin - 1);
       if (begin == 0) return {first, -1};
@@ -97,6 +78,21 @@ CsvEnd csv_end_through_step(const std::filesystem::path& file, const std::vector
     if (std::uintmax_t(in.gcount()) != block) throw ResumeError(file.string() + ": cannot be read, so the run cannot be resumed");
     text.insert(0, before);
   }
+}
+
+CsvRows csv_rows_through_step(const std::filesystem::path& file, const std::vector<std::string>& columns, int last_step) {
+  const CsvEnd end = csv_end_through_step(file, columns, last_step);
+  const std::size_t first = header_line(columns).size();
+  std::ifstream in(file, std::ios::binary);
+  CsvRows rows;
+  rows.text.resize(std::size_t(end.length) - first);
+  in.seekg(std::streamoff(first));
+  in.read(rows.text.data(), std::streamsize(rows.text.size()));
+  if (std::size_t(in.gcount()) != rows.text.size())
+    throw ResumeError(file.string() + ": cannot be read, so the run cannot be resumed");
+  rows.count = std::size_t(std::count(rows.text.begin(), rows.text.end(), '\n'));
+  rows.last_step = end.last_step;
+  return rows;
 }
 
 }  // namespace stiffsoft

@@ -17,10 +17,6 @@ struct CsvRows {
   int last_step = -1;      ///< step of the last line kept; −1 when none
 };
 
-/// The rows of `file` whose first field (the step) is at most `last_step`. Throws ResumeError
-/// (checkpoint.hpp) naming the file when it cannot be read or its header is not `columns`.
-CsvRows csv_rows_through_step(const std::filesystem::path& file, const std::vector<std::string>& columns, int last_step);
-
 /// Where the rows of a CSV file through a step end.
 struct CsvEnd {
   std::uintmax_t length = 0;  ///< bytes to keep: the header and the rows through the step
@@ -29,8 +25,13 @@ struct CsvEnd {
 
 /// The end of the rows of `file` whose step is at most `last_step`, for a file too long to
 /// read back whole (a long run's bodies.csv): only the header and the lines after the last such
-/// row are read, from the file's end. A partial last line is not kept. Throws as
-/// csv_rows_through_step().
+/// row are read, from the file's end. A partial last line is not kept. Throws ResumeError
+/// (checkpoint.hpp) naming the file when it cannot be read, its header is not `columns` or a
+/// line read does not start with a step number.
 CsvEnd csv_end_through_step(const std::filesystem::path& file, const std::vector<std::string>& columns, int last_step);
+
+/// The rows of `file` whose first field (the step) is at most `last_step`, found as
+/// csv_end_through_step() finds their end (stats.csv, joints.csv: one row per step). Throws as it.
+CsvRows csv_rows_through_step(const std::filesystem::path& file, const std::vector<std::string>& columns, int last_step);
 
 }  // namespace stiffsoft

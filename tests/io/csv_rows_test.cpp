@@ -1,5 +1,5 @@
 /// @file Reading a run's CSV files back for a resume: csv_end_through_step, which reads a long
-/// file from its end, keeps exactly the bytes csv_rows_through_step reads from its start.
+/// file from its end, and csv_rows_through_step keep exactly the whole rows through a step.
 #include <stiffsoft/io/csv_rows.hpp>
 
 #include <gtest/gtest.h>
@@ -31,25 +31,27 @@ std::filesystem::path write_rows(const std::filesystem::path& file, int last, in
   return file;
 }
 
-/// What csv_rows_through_step keeps, as csv_end_through_step reports it.
-CsvEnd read_from_start(const std::filesystem::path& file, int last_step) {
-  const CsvRows rows = csv_rows_through_step(file, kColumns, last_step);
-  return {std::string("step,body,x\n").size() + rows.text.size(), rows.last_step};
-}
+const std::string kHeader = "step,body,x\n";
 
-TEST(CsvRows, TheEndFoundFromTheFilesEndIsTheOneReadFromItsStart) {
+TEST(CsvRows, TheEndFoundFromTheFilesEndKeepsEveryWholeRowThroughTheStep) {
   const auto dir = testing::temporary_folder("csv_rows");
   // Rows of 400 bytes, 600 a step: 240 kB a step, so the 1 MB blocks end inside rows and steps.
+  const int last = 30, per_step = 600, width = 400;
   for (const std::string& tail : {std::string(), std::string("31,b0,12")}) {
-    const auto file = write_rows(dir / "bodies.csv", 30, 600, 400, tail);
+    const auto file = write_rows(dir / "bodies.csv", last, per_step, width, tail);
     for (int step : {-1, 0, 1, 7, 20, 29, 30, 31, 1000}) {
-      const CsvEnd from_end = csv_end_through_step(file, kColumns, step);
-      const CsvEnd from_start = read_from_start(file, step);
-      EXPECT_EQ(from_end.length, from_start.length) << "through step " << step << ", tail '" << tail << "'";
-      EXPECT_EQ(from_end.last_step, from_start.last_step) << "through step " << step;
+      const int kept = std::min(step, last);  // the partial line is never kept
+      const std::uintmax_t length = kHeader.size() + std::uintmax_t(kept + 1) * per_step * (width + 1);
+      const CsvEnd end = csv_end_through_step(file, kColumns, step);
+      EXPECT_EQ(end.length, length) << "through step " << step << ", tail '" << tail << "'";
+      EXPECT_EQ(end.last_step, kept) << "through step " << step;
+      const CsvRows rows = csv_rows_through_step(file, kColumns, step);
+      EXPECT_EQ(rows.text.size(), length - kHeader.size()) << "through step " << step;
+      EXPECT_EQ(rows.count, std::size_t(kept + 1) * per_step) << "through step " << step;
+      EXPECT_EQ(rows.last_step, kept) << "through step " << step;
+      if (kept >= 0) EXPECT_EQ(rows.text.substr(rows.text.size() - width - 1, std::to_string(kept).size() + 1),
+                               std::to_string(kept) + ",");
     }
-    EXPECT_EQ(csv_end_through_step(file, kColumns, 30).length,
-              std::filesystem::file_size(file) - tail.size());  // the partial line is dropped
   }
 }
 
@@ -58,12 +60,12 @@ TEST(CsvRows, AFileWithoutWholeRowsKeepsItsHeader) {
   for (const std::string& tail : {std::string(), std::string("0,b0"), std::string("0,b0,1")}) {
     const auto file = write_rows(dir / "bodies.csv", -1, 0, 0, tail);
     const CsvEnd end = csv_end_through_step(file, kColumns, 5);
-    EXPECT_EQ(end.length, std::string("step,body,x\n").size()) << tail;
+    EXPECT_EQ(end.length, kHeader.size()) << tail;
     EXPECT_EQ(end.last_step, -1) << tail;
   }
 }
 
-TEST(CsvRows, AnotherHeaderOrNoFileIsAResumeErrorNamingTheFile) {
+TEST(CsvRows, AnotherHeaderNoFileOrALineWithoutAStepIsAResumeErrorNamingTheFile) {
   const auto dir = testing::temporary_folder("csv_rows");
   const auto file = write_rows(dir / "bodies.csv", 3, 2, 10);
   try {
@@ -73,6 +75,16 @@ TEST(CsvRows, AnotherHeaderOrNoFileIsAResumeErrorNamingTheFile) {
     EXPECT_NE(std::string(e.what()).find("bodies.csv: not the header this version writes"), std::string::npos) << e.what();
   }
   EXPECT_THROW(csv_end_through_step(dir / "missing.csv", kColumns, 3), ResumeError);
+  // A quoted name with a line break: the record's second line starts with no step, and the cut
+  // would fall inside the record.
+  std::ofstream(dir / "broken.csv", std::ios::binary) << kHeader << "0,b0,1\n0,\"two\nlines\",1\n";
+  try {
+    csv_end_through_step(dir / "broken.csv", kColumns, 0);
+    FAIL() << "no error for a line without a step";
+  } catch (const ResumeError& e) {
+    EXPECT_NE(std::string(e.what()).find("broken.csv: a line that does not start with a step number"), std::string::npos)
+        << e.what();
+  }
   EXPECT_THROW(csv_rows_through_step(dir / "missing.csv", kColumns, 3), ResumeError);
 }
 
