@@ -246,9 +246,12 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
     // contact's gap by more than gap_tolerance of it: a contact pressed deep into the barrier
     // moves out by only about its own gap per iteration, a move the speed rule alone takes for
     // convergence. The last (small) step is still taken, as its first trial (CCD-bounded, so
-    // intersection-free) without the energy test: skipping it would freeze a body whose per-step
-    // velocity change is below ε_d, e.g. a block starting to slide, and testing it spent several
-    // halvings on energy changes at round-off (docs/newton.md, session 40).
+    // intersection-free) where that does not raise E: skipping it would freeze a body whose
+    // per-step velocity change is below ε_d, e.g. a block starting to slide, and halving it spent
+    // several trials on energy changes at round-off (docs/newton.md, session 40). A first trial
+    // that raises E is neither taken nor halved: Newton stops where it is. Taken, such a step (a
+    // model too soft along it: a loaded contact released) left its error to the next time step,
+    // and a body resting on a face rocked for good (session 46).
     // With stick_tolerance set, it must also move no sticking friction stencil by more than that
     // fraction of ε_v h: in the stick zone friction's stiffness makes every direction short, so
     // a block that should break loose from it would otherwise stop there.
@@ -316,10 +319,11 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
       x_trial = model.surface(q_trial);
       update_all(terms, {q_trial, x_trial});
       E_trial = total_energy(terms, {q_trial, x_trial});
-      if (E_trial <= E + noise || small_step) {
+      if (E_trial <= E + noise) {
         accepted = true;
         break;
       }
+      if (small_step) break;
       if (geodesic && !straight) {  // the same α once more, on the straight line
         go_straight(alpha);
         continue;
