@@ -250,10 +250,9 @@ TEST(Landing, NewtonDoesNotStopWithTheBoxPressedIntoTheBarrier) {
 // A hexagonal prism lying on a side face, rocked about its axis at the start as a cylinder of
 // `full`'s resting pile rocked at t = 3 s (with full's ε_v, tolerance and κ), must come to rest
 // with the floor carrying its weight. Newton used to take its converged direction's first trial
-// whatever the energy did there; with a loaded contact released (0.6 of its Hessian) that step
-// raised E, its error went into the next step, and the prism rocked for good, the floor's force
-// alternating up to 11.6 N against a weight of 4.08 N. Started three times faster it still rocks
-// in a cycle of two steps (docs/newton.md, session 46).
+// whatever the energy did there; that step raised E, its error went into the next step, and the
+// prism rocked for good, the floor's force alternating up to 11.6 N against a weight of 4.08 N.
+// Started three times faster it still rocks, in a cycle of two steps (docs/newton.md, session 46).
 TEST(Rest, APrismRockedOnAFaceComesToRestUnderItsWeight) {
   Simulation sim = stiffsoft::testing::simulate(R"({"description": "rocking prism",
     "time": {"dt": 0.004166666666666667},

@@ -249,9 +249,9 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
     // intersection-free) where that does not raise E: skipping it would freeze a body whose
     // per-step velocity change is below ε_d, e.g. a block starting to slide, and halving it spent
     // several trials on energy changes at round-off (docs/newton.md, session 40). A first trial
-    // that raises E is neither taken nor halved: Newton stops where it is. Taken, such a step (a
-    // model too soft along it: a loaded contact released) left its error to the next time step,
-    // and a body resting on a face rocked for good (session 46).
+    // that raises E is neither taken nor halved: Newton stops where it is. Taken, such a step
+    // left its error to the next time step, and a body resting on a face rocked for good
+    // (session 46).
     // With stick_tolerance set, it must also move no sticking friction stencil by more than that
     // fraction of ε_v h: in the stick zone friction's stiffness makes every direction short, so
     // a block that should break loose from it would otherwise stop there.
