@@ -1,5 +1,6 @@
 /// @file Contact physics against validation.md: the 26.565° incline (sticks at μ = 0.5, slides
-/// at μ = 0.49 with a = g (sin θ − μ cos θ)), and a box stack coming to rest.
+/// at μ = 0.49 with a = g (sin θ − μ cos θ)), a box stack coming to rest, a landing box, and a
+/// rocking prism coming to rest under its weight.
 
 #include <gtest/gtest.h>
 
