@@ -158,7 +158,8 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
       break;
     }
     Eigen::MatrixX3d dx = model.surface_step(p);
-    const bool exact_within_tolerance = (dx.rows() ? dx.rowwise().norm().maxCoeff() : 0.0) < settings.tolerance * settings.h;
+    const bool exact_within_tolerance =
+        (dx.rows() ? dx.rowwise().norm().maxCoeff() : 0.0) < settings.tolerance * settings.h;
     bool revised = false;
     {
       ScopedTimer timer(times.assembly);
