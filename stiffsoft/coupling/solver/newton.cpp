@@ -28,10 +28,13 @@ void update_all(const std::vector<EnergyTerm*>& terms, const Configuration& c) {
   for (EnergyTerm* t : terms) t->update(c);
 }
 
-/// E at q + dq, or +∞ where CCD does not allow the whole move; leaves the terms updated there.
+/// The largest move of a surface point in the surface step dx (m); 0 without surface points.
+double largest_move(const Eigen::MatrixX3d& dx) { return dx.rows() ? dx.rowwise().norm().maxCoeff() : 0.0; }
+
+/// E at q + dq (surface step dx), or +∞ where CCD does not allow the whole move; leaves the
+/// terms updated there.
 double full_step_energy(const Model& model, const std::vector<EnergyTerm*>& terms, const Configuration& c,
-                        const Eigen::VectorXd& dq) {
-  const Eigen::MatrixX3d dx = model.surface_step(dq);
+                        const Eigen::VectorXd& dq, const Eigen::MatrixX3d& dx) {
   for (const EnergyTerm* t : terms)
     if (t->max_step(c, dq, dx) < 1) return std::numeric_limits<double>::infinity();
   const Eigen::VectorXd q = c.q + dq;
@@ -158,8 +161,6 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
       break;
     }
     Eigen::MatrixX3d dx = model.surface_step(p);
-    const bool exact_within_tolerance =
-        (dx.rows() ? dx.rowwise().norm().maxCoeff() : 0.0) < settings.tolerance * settings.h;
     bool revised = false;
     {
       ScopedTimer timer(times.assembly);
@@ -179,15 +180,16 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
         // released contact that carries load: a body resting on a face rocked from step to step,
         // docs/newton.md, session 46): there the unrevised direction stands where its full step
         // ends at a lower E than the revised one's.
+        Eigen::MatrixX3d dx_revised = model.surface_step(p_revised);
         bool unrevised_lower = false;
-        if (exact_within_tolerance) {
-          const double E_revised = full_step_energy(model, terms, c, p_revised);
-          unrevised_lower = full_step_energy(model, terms, c, p) < E_revised;
+        if (largest_move(dx) < settings.tolerance * settings.h) {  // dx is still the unrevised step
+          const double E_revised = full_step_energy(model, terms, c, p_revised, dx_revised);
+          unrevised_lower = full_step_energy(model, terms, c, p, dx) < E_revised;
           update_all(terms, c);
         }
         if (!unrevised_lower) {
           p.swap(p_revised);
-          dx = model.surface_step(p);
+          dx.swap(dx_revised);
           ++report.revised_directions;
         }
       }
@@ -268,7 +270,7 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
         springs_used = springs.size();
       }
     }
-    report.last_step_speed = (dx.rows() ? dx.rowwise().norm().maxCoeff() : 0.0) / settings.h;
+    report.last_step_speed = largest_move(dx) / settings.h;
     // Converged when the direction moves no surface point faster than ε_d and changes no active
     // contact's gap by more than gap_tolerance of it: a contact pressed deep into the barrier
     // moves out by only about its own gap per iteration, a move the speed rule alone takes for
