@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <string>
 #include <stiffsoft/coupling/contact/broad_phase.hpp>
+#include <stiffsoft/coupling/contact/constraint_set.hpp>
 #include <stiffsoft/coupling/contact/distance_classification.hpp>
 #include <stiffsoft/coupling/contact/ordered_chunks.hpp>
 #include <stiffsoft/coupling/contact/swept_candidates.hpp>
@@ -313,6 +314,73 @@ TEST(SweptCandidates, AServedSegmentsPairsAreAmongTheirs) {
   std::printf("    segments served by kept candidates / by a new broad phase: %d / %d\n", served, refused);
   EXPECT_GT(served, 10);
   EXPECT_GT(refused, 3);
+}
+
+/// A random configuration covered by candidates of the segment x0 → x1 with this slack (m):
+/// each body at a random point of its segment, shifted by the slack along every axis, each
+/// way at random (a corner of the region its vertices may reach, where pairs come closest).
+Eigen::MatrixX3d covered_at_random(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
+                                   double slack, std::mt19937& rng) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Eigen::MatrixX3d x = x0;
+  for (const BodyModel& body : model.bodies) {
+    const double t = unit(rng);
+    Eigen::RowVector3d corner;
+    for (int i = 0; i < 3; ++i) corner(i) = (unit(rng) < 0.5 ? -1 : 1) * (1 - 1e-9) * slack;
+    for (int v = body.vertex_begin; v < body.vertex_end; ++v) x.row(v) = x0.row(v) + t * (x1.row(v) - x0.row(v)) + corner;
+  }
+  return x;
+}
+
+bool same_contacts(const std::vector<ContactConstraint>& a, const std::vector<ContactConstraint>& b) {
+  const auto same = [](const ContactConstraint& p, const ContactConstraint& q) {
+    return p.stencil.kind == q.stencil.kind && p.vertices == q.vertices && p.weight == q.weight &&
+           p.distance == q.distance && p.stencil.eps_x == q.stencil.eps_x &&
+           p.stencil.segment_distance == q.stencil.segment_distance;
+  };
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), same);
+}
+
+TEST(SweptCandidates, TheNearOnesGiveEveryCoveredConfigurationsContacts) {
+  // Every body of the heap moved by 4 mm, then anywhere on that move and 2 mm off it along each
+  // axis (d̂ = 1 cm, bodies 5–18 mm apart): the contacts change from one configuration to the
+  // next, and the candidates sorted out at the first one give them all, bit for bit, at every
+  // other.
+  const PreparedScene heap =
+      prepare_scene(load_scene_from_string(kHeap, STIFFSOFT_SOURCE_DIR, "heap.json", "heap"), "heap.json");
+  const Model& model = heap.model;
+  const double dhat = 0.01, slack = 2e-3;
+  BroadPhase finder(dhat);
+  std::mt19937 rng(5);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const Eigen::MatrixX3d x0 = model.surface(model.initial_q());
+  Eigen::MatrixX3d x1 = x0;
+  for (const BodyModel& body : model.bodies) {
+    if (body.dof < 0) continue;
+    const Eigen::RowVector3d shift = 4e-3 * Eigen::RowVector3d(normal(rng), normal(rng), normal(rng)).normalized();
+    for (int v = body.vertex_begin; v < body.vertex_end; ++v) x1.row(v) += shift;
+  }
+  SweptCandidates kept(model, x0, x1, 0.5 * dhat, slack, finder);
+  const Eigen::MatrixX3d first = covered_at_random(model, x0, x1, slack, rng);
+  ASSERT_TRUE(kept.covers(first));
+  const std::vector<double> reach = kept.reach_from(first);
+  Candidates near;
+  const NearCandidates sort_out{reach, near};
+  EXPECT_TRUE(same_contacts(build_constraints(model, first, kept.all(), dhat, &sort_out),
+                            build_constraints(model, first, kept.all(), dhat)));
+  const std::size_t all = kept.all().vertex_face.size() + kept.all().edge_edge.size();
+  const std::size_t kept_near = near.vertex_face.size() + near.edge_edge.size();
+  std::printf("    candidates: %zu, near: %zu\n", all, kept_near);
+  EXPECT_LT(kept_near, all);
+  std::set<std::size_t> counts;
+  for (int trial = 0; trial < 200; ++trial) {
+    const Eigen::MatrixX3d x = covered_at_random(model, x0, x1, slack, rng);
+    ASSERT_TRUE(kept.covers(x));
+    const std::vector<ContactConstraint> contacts = build_constraints(model, x, kept.all(), dhat);
+    counts.insert(contacts.size());
+    EXPECT_TRUE(same_contacts(build_constraints(model, x, near, dhat), contacts)) << "trial " << trial;
+  }
+  EXPECT_GT(counts.size(), 3u);  // the configurations differ in their contacts
 }
 
 TEST(InOrderedChunks, GathersInItemOrderWhateverTheThreadCount) {

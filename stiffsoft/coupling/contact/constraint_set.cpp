@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 
 namespace stiffsoft {
@@ -61,20 +62,40 @@ bool less(const ContactConstraint& a, const ContactConstraint& b) {
 }  // namespace
 
 std::vector<ContactConstraint> build_constraints(const Model& model, const Eigen::MatrixX3d& x_by_column,
-                                                 const Candidates& candidates, double dhat) {
+                                                 const Candidates& candidates, double dhat,
+                                                 const NearCandidates* sort_out) {
   const CollisionMesh& mesh = model.mesh;
   const PointRows x = x_by_column;  // each candidate reads its points from four places, not twelve
   const double dhat2 = dhat * dhat;
+  // Rounding margin of the bounds' comparisons: far above their rounding, so the set is the one
+  // classification alone gives.
+  constexpr double kMargin = 1e-6;
+  const double cut = (1 + kMargin) * dhat2;
   tbb::enumerable_thread_specific<std::vector<ContactConstraint>> local;
+  // With sort_out: 1 for the candidates that can come within d̂ in the reaches.
+  std::vector<char> vertex_face_near(sort_out ? candidates.vertex_face.size() : 0),
+      edge_edge_near(sort_out ? candidates.edge_edge.size() : 0);
+  // The squared distance below which a pair of primitives, whose vertices move at most ra and
+  // rb, may come closer than d̂.
+  const auto near_limit = [&](double ra, double rb) {
+    const double d = (1 + kMargin) * (dhat + (ra + rb) * (1 + kMargin));
+    return d * d;
+  };
+  const auto reach = [&](std::initializer_list<int> vertices) {
+    double r = 0;
+    for (int v : vertices) r = std::max(r, sort_out->reach[std::size_t(v)]);
+    return r;
+  };
 
   tbb::parallel_for(size_t(0), candidates.vertex_face.size(), [&](size_t k) {
     const auto [v, f] = candidates.vertex_face[k];
     const std::array<int, 4> ids{v, mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)};
     const contact::Vector12d xs = gather(x, ids);
     // As for edge pairs below: far points are rejected by the plane's distance first.
-    if (contact::point_triangle_squared_distance_lower_bound(xs.segment<3>(0), xs.segment<3>(3), xs.segment<3>(6),
-                                                             xs.segment<3>(9)) > (1 + 1e-6) * dhat2)
-      return;
+    const double bound = contact::point_triangle_squared_distance_lower_bound(xs.segment<3>(0), xs.segment<3>(3),
+                                                                              xs.segment<3>(6), xs.segment<3>(9));
+    if (sort_out && bound <= near_limit(reach({ids[0]}), reach({ids[1], ids[2], ids[3]}))) vertex_face_near[k] = 1;
+    if (bound > cut) return;
     const contact::Classified c = contact::classify_point_triangle(
         xs.segment<3>(0), xs.segment<3>(3), xs.segment<3>(6), xs.segment<3>(9));
     const double d2 = contact::squared_distance(c.kind, contact::gather_classified(c, xs));
@@ -86,13 +107,21 @@ std::vector<ContactConstraint> build_constraints(const Model& model, const Eigen
     const std::array<int, 4> ids{mesh.E(ea, 0), mesh.E(ea, 1), mesh.E(eb, 0), mesh.E(eb, 1)};
     const contact::Vector12d xs = gather(x, ids);
     // Most candidates of resting piles are far: rejected by the cheap bounds first (the lines'
-    // distance, then the segments' distances to each other's lines), with a margin far above
-    // their rounding, so the set is the one classification alone gives.
-    if (contact::line_line_squared_distance_lower_bound(xs.segment<3>(0), xs.segment<3>(3), xs.segment<3>(6),
-                                                        xs.segment<3>(9)) > (1 + 1e-6) * dhat2 ||
-        contact::segment_segment_squared_distance_lower_bound(xs.segment<3>(0), xs.segment<3>(3), xs.segment<3>(6),
-                                                              xs.segment<3>(9)) > (1 + 1e-6) * dhat2)
-      return;
+    // distance, then the segments' distances to each other's lines).
+    const double lines = contact::line_line_squared_distance_lower_bound(xs.segment<3>(0), xs.segment<3>(3),
+                                                                         xs.segment<3>(6), xs.segment<3>(9));
+    double segments = -1;  // computed when needed
+    const auto segment_bound = [&] {
+      if (segments < 0)
+        segments = contact::segment_segment_squared_distance_lower_bound(xs.segment<3>(0), xs.segment<3>(3),
+                                                                          xs.segment<3>(6), xs.segment<3>(9));
+      return segments;
+    };
+    if (sort_out) {
+      const double limit = near_limit(reach({ids[0], ids[1]}), reach({ids[2], ids[3]}));
+      if (lines <= limit && segment_bound() <= limit) edge_edge_near[k] = 1;
+    }
+    if (lines > cut || segment_bound() > cut) return;
     const contact::Classified c = contact::classify_edge_edge_stencil(xs);
     const double d2 = contact::squared_distance(c.kind, contact::gather_classified(c, xs));
     if (d2 >= dhat2) return;
@@ -105,6 +134,16 @@ std::vector<ContactConstraint> build_constraints(const Model& model, const Eigen
     else
       local.local().push_back(canonical(c.kind, pick(ids, c), eps_x, false, d2));
   });
+
+  if (sort_out) {
+    Candidates& near = sort_out->near;
+    near.vertex_face.clear();
+    near.edge_edge.clear();
+    for (std::size_t k = 0; k < vertex_face_near.size(); ++k)
+      if (vertex_face_near[k]) near.vertex_face.push_back(candidates.vertex_face[k]);
+    for (std::size_t k = 0; k < edge_edge_near.size(); ++k)
+      if (edge_edge_near[k]) near.edge_edge.push_back(candidates.edge_edge[k]);
+  }
 
   std::size_t count = 0;
   for (const auto& l : local) count += l.size();

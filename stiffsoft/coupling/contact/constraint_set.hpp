@@ -41,10 +41,23 @@ contact::Vector12d gather(const Points& x, const std::array<int, 4>& vertices) {
   return out;
 }
 
+/// What build_constraints may sort out of its candidates on the way: with every surface
+/// vertex v kept within `reach[v]` (m) of where it is now, the candidates that can come closer
+/// than d̂ go into `near`, in their order; every other one stays at least d̂ apart there (no
+/// point of a primitive moves farther than its farthest vertex), so `near` alone gives the
+/// same contacts at any such configuration.
+struct NearCandidates {
+  const std::vector<double>& reach;  ///< per surface vertex, m
+  Candidates& near;                  ///< filled (cleared first)
+};
+
 /// Contacts among the candidates whose distance at x is below d̂ (m). Nearly parallel edge
 /// pairs (‖ea × eb‖² < ε_x) stay edge–edge with the mollifier and the true segment distance.
+/// With `sort_out`, also the candidates that can come within d̂ in its reaches, from the same
+/// bounds (NearCandidates).
 std::vector<ContactConstraint> build_constraints(const Model& model, const Eigen::MatrixX3d& x,
-                                                 const Candidates& candidates, double dhat);
+                                                 const Candidates& candidates, double dhat,
+                                                 const NearCandidates* sort_out = nullptr);
 
 /// Smallest distance (m) between any two primitives of different bodies among the candidates,
 /// or +∞ when there are none.

@@ -75,8 +75,19 @@ std::optional<std::vector<int>> SweptCandidates::extension(const Model& model, c
   return moved;
 }
 
+std::vector<double> SweptCandidates::reach_from(const Eigen::MatrixX3d& x) const {
+  std::vector<double> reach(std::size_t(x.rows()));
+  for (Eigen::Index v = 0; v < x.rows(); ++v)
+    reach[std::size_t(v)] = (x.row(v).array() - (m_lo.row(v) - m_slack))
+                                .max((m_hi.row(v) + m_slack) - x.row(v).array())
+                                .matrix()
+                                .norm();
+  return reach;
+}
+
 void SweptCandidates::extend(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
                              const std::vector<int>& moved) {
+  if (!moved.empty()) m_near.reset();  // its reaches were those of the moved bodies' old boxes
   for (int b : moved) {
     const BodyModel& body = model.bodies[std::size_t(b)];
     const Eigen::Index first = body.vertex_begin, count = body.vertex_end - body.vertex_begin;

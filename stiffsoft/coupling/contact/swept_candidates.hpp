@@ -43,6 +43,15 @@ class SweptCandidates {
   void extend(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, const std::vector<int>& moved);
   /// Every candidate (a superset of the proximity pairs of a covered configuration).
   const Candidates& all() const { return m_all; }
+  /// Per surface vertex, how far from x (|V|×3, m, covered) it can be at any covered
+  /// configuration (m): to the farthest corner of its swept box grown by the slack.
+  std::vector<double> reach_from(const Eigen::MatrixX3d& x) const;
+  /// The candidates of all() that can come within d̂ at a covered configuration, once
+  /// keep_near() gave them (build_constraints over reach_from(); a resting pile's few percent);
+  /// null before, and after extend() moved a body.
+  const Candidates* near() const { return m_near ? &*m_near : nullptr; }
+  /// Keeps the near candidates found at a covered configuration (NearCandidates).
+  void keep_near(Candidates near) { m_near = std::move(near); }
   /// The candidates whose swept boxes overlap without any growth, for the CCD of the segment:
   /// what broad_phase(model, x0, x1, 0) finds, found in the same pass as all() (BroadPhase::find).
   const Candidates& for_ccd() const { return m_ccd; }
@@ -59,6 +68,7 @@ class SweptCandidates {
   double m_proximity;          ///< half the distance below which pairs are candidates (m)
   Candidates m_ccd;            ///< for_ccd(), filled by the broad phase that fills m_all
   Candidates m_all;
+  std::optional<Candidates> m_near;  ///< near()
 };
 
 }  // namespace stiffsoft

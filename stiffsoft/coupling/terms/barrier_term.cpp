@@ -38,6 +38,11 @@ void add_low_rank_blocks(const StencilJacobian& J, const contact::LowRankHessian
     default: blocks(std::integral_constant<int, 5>{}); break;
   }
 }
+/// Slack of a direction's swept candidates (SweptCandidates), in d̂: a resting pile's bodies
+/// breathe by about 10 µm per 1 ms step, and with a tenth of d̂ (1 mm on the seed's piles) the
+/// same candidates serve several steps' moves, each trial looking only at their near ones
+/// (docs/benchmarks.md, session 48).
+constexpr double kSweptSlack = 0.1;
 /// Whether a step from distance d0 to d1 (both in m, d0 < d̂) releases a contact: leaves it
 /// 35–65 % of its way out of d̂, as Newton on the barrier's cubic tail does (half of it).
 bool releases(double d0, double d1, double dhat) {
@@ -70,12 +75,25 @@ void BarrierTerm::update(const Configuration& c) {
   double dummy = 0;
   ScopedTimer timer(m_times ? m_times->broad_phase : dummy);
   if (m_swept && m_swept->covers(c.x)) {
-    m_constraints = build_constraints(m_model, c.x, m_swept->all(), m_settings.dhat);
+    m_constraints = covered_constraints(c.x);
   } else {
     const Candidates candidates = m_broad_phase.find(m_model, c.x, c.x, 0.5 * m_settings.dhat);
     m_constraints = build_constraints(m_model, c.x, candidates, m_settings.dhat);
   }
   m_constraints_at = c.x;
+}
+
+std::vector<ContactConstraint> BarrierTerm::covered_constraints(const Eigen::MatrixX3d& x) const {
+  // The first configuration the candidates serve sorts out those that can come within d̂
+  // anywhere they serve; later ones (the line search's trials, the next step's start at rest)
+  // look at those alone.
+  if (const Candidates* near = m_swept->near()) return build_constraints(m_model, x, *near, m_settings.dhat);
+  const std::vector<double> reach = m_swept->reach_from(x);
+  Candidates near;
+  const NearCandidates sort_out{reach, near};
+  std::vector<ContactConstraint> out = build_constraints(m_model, x, m_swept->all(), m_settings.dhat, &sort_out);
+  m_swept->keep_near(std::move(near));
+  return out;
 }
 
 double BarrierTerm::value(const Configuration& c) const {
@@ -165,7 +183,7 @@ double BarrierTerm::max_step(const Configuration& c, const Eigen::VectorXd&, con
   m_cut.clear();
   if (keeps_clear(c, x1)) return 1.0;
   // One broad phase for the CCD and every line-search trial of this direction (update()).
-  m_swept.emplace(m_model, c.x, x1, 0.5 * m_settings.dhat, 0.01 * m_settings.dhat, m_broad_phase);
+  m_swept.emplace(m_model, c.x, x1, 0.5 * m_settings.dhat, kSweptSlack * m_settings.dhat, m_broad_phase);
   std::vector<double> bound{1.0};
   ccd_bounds(c.x, x1, nullptr, bound);
   return bound[0];
@@ -177,8 +195,10 @@ void BarrierTerm::join_coupled_blocks(const Configuration& c, const Eigen::Matri
   const Eigen::MatrixX3d x1 = c.x + dx;
   m_cut.clear();
   m_move_clear = keeps_clear(c, x1);
-  if (!m_move_clear) m_swept.emplace(m_model, c.x, x1, 0.5 * m_settings.dhat, 0.01 * m_settings.dhat, m_broad_phase);
-  const Candidates& all = m_swept->all();
+  if (!m_move_clear) m_swept.emplace(m_model, c.x, x1, 0.5 * m_settings.dhat, kSweptSlack * m_settings.dhat, m_broad_phase);
+  // Pairs that cannot come within d̂ on the move's trials (all covered) couple nothing.
+  if (!m_swept->near()) covered_constraints(c.x);
+  const Candidates& near = *m_swept->near();
   const CollisionMesh& mesh = m_model.mesh;
   const std::vector<int>& block = m_vertex_block;
   // The pairs come body pair by body pair, so a pair's blocks are mostly the last pair's.
@@ -188,8 +208,8 @@ void BarrierTerm::join_coupled_blocks(const Configuration& c, const Eigen::Matri
     islands.join_blocks(blocks);
     last = blocks;
   };
-  for (const auto& [v, f] : all.vertex_face) join({block[v], block[mesh.F(f, 0)], block[mesh.F(f, 1)], block[mesh.F(f, 2)]});
-  for (const auto& [ea, eb] : all.edge_edge)
+  for (const auto& [v, f] : near.vertex_face) join({block[v], block[mesh.F(f, 0)], block[mesh.F(f, 1)], block[mesh.F(f, 2)]});
+  for (const auto& [ea, eb] : near.edge_edge)
     join({block[mesh.E(ea, 0)], block[mesh.E(ea, 1)], block[mesh.E(eb, 0)], block[mesh.E(eb, 1)]});
 }
 

@@ -113,6 +113,9 @@ class BarrierTerm final : public EnergyTerm {
   /// null, `bound` of size 1) or for each.
   void ccd_bounds(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, const BlockIslands* islands,
                   std::vector<double>& bound) const;
+  /// The contacts at x, which m_swept covers, from its near candidates (sorted out at x first
+  /// where it has none yet).
+  std::vector<ContactConstraint> covered_constraints(const Eigen::MatrixX3d& x) const;
   /// scale × stencil k's Newton Hessian at c, as blocks of J^T H J.
   void stencil_hessian(const Configuration& c, size_t k, double scale, StencilHessian& out) const;
   const Model& m_model;
