@@ -43,6 +43,9 @@ void add_low_rank_blocks(const StencilJacobian& J, const contact::LowRankHessian
 /// same candidates serve several steps' moves, each trial looking only at their near ones
 /// (docs/benchmarks.md, session 48).
 constexpr double kSweptSlack = 0.1;
+/// A move's islands are joined by its candidate pairs whose swept boxes, grown by d̂/2 plus
+/// this, in d̂, meet (the slack the candidates had before session 48, so the same islands).
+constexpr double kIslandSlack = 0.01;
 /// Whether a step from distance d0 to d1 (both in m, d0 < d̂) releases a contact: leaves it
 /// 35–65 % of its way out of d̂, as Newton on the barrier's cubic tail does (half of it).
 bool releases(double d0, double d1, double dhat) {
@@ -196,9 +199,8 @@ void BarrierTerm::join_coupled_blocks(const Configuration& c, const Eigen::Matri
   m_cut.clear();
   m_move_clear = keeps_clear(c, x1);
   if (!m_move_clear) m_swept.emplace(m_model, c.x, x1, 0.5 * m_settings.dhat, kSweptSlack * m_settings.dhat, m_broad_phase);
-  // Pairs that cannot come within d̂ on the move's trials (all covered) couple nothing.
-  if (!m_swept->near()) covered_constraints(c.x);
-  const Candidates& near = *m_swept->near();
+  const Candidates& all = m_swept->all();
+  const double growth = (0.5 + kIslandSlack) * m_settings.dhat;
   const CollisionMesh& mesh = m_model.mesh;
   const std::vector<int>& block = m_vertex_block;
   // The pairs come body pair by body pair, so a pair's blocks are mostly the last pair's.
@@ -208,9 +210,12 @@ void BarrierTerm::join_coupled_blocks(const Configuration& c, const Eigen::Matri
     islands.join_blocks(blocks);
     last = blocks;
   };
-  for (const auto& [v, f] : near.vertex_face) join({block[v], block[mesh.F(f, 0)], block[mesh.F(f, 1)], block[mesh.F(f, 2)]});
-  for (const auto& [ea, eb] : near.edge_edge)
-    join({block[mesh.E(ea, 0)], block[mesh.E(ea, 1)], block[mesh.E(eb, 0)], block[mesh.E(eb, 1)]});
+  for (const auto& [v, f] : all.vertex_face)
+    if (m_swept->swept_boxes_meet({v, -1, -1}, {mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)}, growth))
+      join({block[v], block[mesh.F(f, 0)], block[mesh.F(f, 1)], block[mesh.F(f, 2)]});
+  for (const auto& [ea, eb] : all.edge_edge)
+    if (m_swept->swept_boxes_meet({mesh.E(ea, 0), mesh.E(ea, 1), -1}, {mesh.E(eb, 0), mesh.E(eb, 1), -1}, growth))
+      join({block[mesh.E(ea, 0)], block[mesh.E(ea, 1)], block[mesh.E(eb, 0)], block[mesh.E(eb, 1)]});
 }
 
 void BarrierTerm::max_step_per_island(const Configuration& c, const Eigen::VectorXd&, const Eigen::MatrixX3d& dx,
@@ -324,6 +329,11 @@ void BarrierTerm::ccd_bounds(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d&
   };
   lower(candidates.vertex_face.size(), vertex_face_vertices, vertex_face_time, true);
   lower(candidates.edge_edge.size(), edge_edge_vertices, edge_edge_time, false);
+  // In an order of their own: the candidates' order depends on the broad phase's memory (the
+  // calls before, its slack), and the springs on these pairs are summed in this order.
+  std::sort(m_cut.begin(), m_cut.end(), [](const CutPair& a, const CutPair& b) {
+    return std::make_pair(a.vertex_face, a.vertices) < std::make_pair(b.vertex_face, b.vertices);
+  });
   for (std::size_t i = 0; i < bound.size(); ++i) bound[i] = std::min(bound[i], t_max[i]);
 }
 
