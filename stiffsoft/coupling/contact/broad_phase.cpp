@@ -28,11 +28,6 @@ struct Keyed {
   int id;
 };
 
-/// Boxes of vertices, faces and edges for one broad-phase call.
-struct PrimitiveBoxes {
-  std::vector<Box> vertex, face, edge;
-};
-
 /// out[k] spans the boxes of the vertices of primitive k (a row of F or E), for k in [begin, end).
 template <class Primitives>
 void span(const Primitives& primitives, const std::vector<Box>& vertex, Eigen::Index begin, Eigen::Index end,
@@ -43,6 +38,8 @@ void span(const Primitives& primitives, const std::vector<Box>& vertex, Eigen::I
     out[k] = box;
   }
 }
+
+}  // namespace
 
 PrimitiveBoxes primitive_boxes(const CollisionMesh& mesh, const Eigen::MatrixX3d& x0,
                                const Eigen::MatrixX3d& x1, double inflation) {
@@ -64,6 +61,8 @@ PrimitiveBoxes primitive_boxes(const CollisionMesh& mesh, const Eigen::MatrixX3d
   span_all(mesh.E, boxes.edge);
   return boxes;
 }
+
+namespace {
 
 /// The primitives in [begin, end) whose box meets `region`, keyed along `axis`, in id order.
 std::vector<Keyed> inside(const std::vector<Box>& boxes, int begin, int end, const Box& region,

@@ -44,6 +44,17 @@ struct AxisBox {
   bool contains(const AxisBox& o) const { return (lo <= o.lo).all() && (o.hi <= hi).all(); }
 };
 
+/// Boxes of every surface vertex, face and edge (rows of CollisionMesh's F and E) on the
+/// segment x0 → x1 (|V|×3 each, m), each vertex's box spanning both ends grown by `inflation`
+/// (m) and each primitive's spanning its vertices' boxes: the boxes broad_phase() tests, with
+/// the same numbers.
+struct PrimitiveBoxes {
+  std::vector<AxisBox> vertex, face, edge;
+};
+/// PrimitiveBoxes of the segment x0 → x1 grown by `inflation` (m).
+PrimitiveBoxes primitive_boxes(const CollisionMesh& mesh, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
+                               double inflation);
+
 /// The broad phase of a run: the same candidates as broad_phase() at every call, found from
 /// memory where the bodies barely moved (a Verlet list per body pair). Each body keeps
 /// reference boxes, its vertices' boxes grown by `margin` when it last moved out of them; a

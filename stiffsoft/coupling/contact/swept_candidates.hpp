@@ -8,7 +8,6 @@
 /// that stay alone, is served by the same candidates (extension(); a resting pile's moves).
 
 #include <Eigen/Core>
-#include <array>
 #include <optional>
 #include <vector>
 
@@ -53,27 +52,11 @@ class SweptCandidates {
   const Candidates* near() const { return m_near ? &*m_near : nullptr; }
   /// Keeps the near candidates found at a covered configuration (NearCandidates).
   void keep_near(Candidates near) { m_near = std::move(near); }
-  /// Whether the swept boxes of two primitives (their vertices, −1 for none after the first),
-  /// grown by `growth` (m), overlap: the test broad_phase(model, x0, x1, growth) makes, with
-  /// the same numbers, on the segments the candidates serve.
-  bool swept_boxes_meet(const std::array<int, 3>& a, const std::array<int, 3>& b, double growth) const {
-    return primitive_box(a, growth).overlaps(primitive_box(b, growth));
-  }
   /// The candidates whose swept boxes overlap without any growth, for the CCD of the segment:
   /// what broad_phase(model, x0, x1, 0) finds, found in the same pass as all() (BroadPhase::find).
   const Candidates& for_ccd() const { return m_ccd; }
 
  private:
-  /// The box of a primitive's swept vertex boxes, each grown by `growth` (m), as broad_phase()
-  /// spans it.
-  AxisBox primitive_box(const std::array<int, 3>& vertices, double growth) const {
-    AxisBox box(m_lo.row(vertices[0]).transpose() - growth, m_hi.row(vertices[0]).transpose() + growth);
-    for (int i = 1; i < 3 && vertices[i] >= 0; ++i) {
-      box.lo = box.lo.min(m_lo.row(vertices[i]).transpose() - growth);
-      box.hi = box.hi.max(m_hi.row(vertices[i]).transpose() + growth);
-    }
-    return box;
-  }
   /// The box of the body's (non-empty) vertices on the segment x0 → x1, grown by proximity + slack.
   AxisBox grown_segment_box(const BodyModel& body, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1) const;
 

@@ -198,9 +198,6 @@ void BarrierTerm::join_coupled_blocks(const Configuration& c, const Eigen::Matri
   const Eigen::MatrixX3d x1 = c.x + dx;
   m_cut.clear();
   m_move_clear = keeps_clear(c, x1);
-  if (!m_move_clear) m_swept.emplace(m_model, c.x, x1, 0.5 * m_settings.dhat, kSweptSlack * m_settings.dhat, m_broad_phase);
-  const Candidates& all = m_swept->all();
-  const double growth = (0.5 + kIslandSlack) * m_settings.dhat;
   const CollisionMesh& mesh = m_model.mesh;
   const std::vector<int>& block = m_vertex_block;
   // The pairs come body pair by body pair, so a pair's blocks are mostly the last pair's.
@@ -210,12 +207,26 @@ void BarrierTerm::join_coupled_blocks(const Configuration& c, const Eigen::Matri
     islands.join_blocks(blocks);
     last = blocks;
   };
-  for (const auto& [v, f] : all.vertex_face)
-    if (m_swept->swept_boxes_meet({v, -1, -1}, {mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)}, growth))
-      join({block[v], block[mesh.F(f, 0)], block[mesh.F(f, 1)], block[mesh.F(f, 2)]});
-  for (const auto& [ea, eb] : all.edge_edge)
-    if (m_swept->swept_boxes_meet({mesh.E(ea, 0), mesh.E(ea, 1), -1}, {mesh.E(eb, 0), mesh.E(eb, 1), -1}, growth))
-      join({block[mesh.E(ea, 0)], block[mesh.E(ea, 1)], block[mesh.E(eb, 0)], block[mesh.E(eb, 1)]});
+  // Joins the blocks of the pairs for which meets(vertex_face, i, j) holds.
+  const auto join_pairs = [&](const Candidates& pairs, const auto& meets) {
+    for (const auto& [v, f] : pairs.vertex_face)
+      if (meets(true, v, f)) join({block[v], block[mesh.F(f, 0)], block[mesh.F(f, 1)], block[mesh.F(f, 2)]});
+    for (const auto& [ea, eb] : pairs.edge_edge)
+      if (meets(false, ea, eb)) join({block[mesh.E(ea, 0)], block[mesh.E(ea, 1)], block[mesh.E(eb, 0)], block[mesh.E(eb, 1)]});
+  };
+  if (m_move_clear) {
+    // Every CCD bound of a kept move is 1, so its islands step alike; they are joined by the
+    // pairs that can come within d̂ on it (all covered), few at rest.
+    if (!m_swept->near()) covered_constraints(c.x);
+    join_pairs(*m_swept->near(), [](bool, int, int) { return true; });
+    return;
+  }
+  m_swept.emplace(m_model, c.x, x1, 0.5 * m_settings.dhat, kSweptSlack * m_settings.dhat, m_broad_phase);
+  const PrimitiveBoxes boxes = primitive_boxes(mesh, c.x, x1, (0.5 + kIslandSlack) * m_settings.dhat);
+  join_pairs(m_swept->all(), [&](bool vertex_face, int i, int j) {
+    return vertex_face ? boxes.vertex[std::size_t(i)].overlaps(boxes.face[std::size_t(j)])
+                       : boxes.edge[std::size_t(i)].overlaps(boxes.edge[std::size_t(j)]);
+  });
 }
 
 void BarrierTerm::max_step_per_island(const Configuration& c, const Eigen::VectorXd&, const Eigen::MatrixX3d& dx,
