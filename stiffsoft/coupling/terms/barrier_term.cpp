@@ -39,7 +39,7 @@ void add_low_rank_blocks(const StencilJacobian& J, const contact::LowRankHessian
   }
 }
 /// Slack of a direction's swept candidates (SweptCandidates), in d̂: a resting pile's bodies
-/// breathe by about 10 µm per 1 ms step, and with a tenth of d̂ (1 mm on the seed's piles) the
+/// breathe by about 10 µm per 1 ms step, and with a tenth of d̂ (0.1 mm on the seed's piles) the
 /// same candidates serve several steps' moves, each trial looking only at their near ones
 /// (docs/benchmarks.md, session 48).
 constexpr double kSweptSlack = 0.1;
