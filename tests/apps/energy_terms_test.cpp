@@ -823,6 +823,29 @@ TEST(EnergyTermsMaxStep, BarrierKeepingItsCandidatesBoundsAndFindsContactsAsAFre
   EXPECT_EQ(kept.kept_moves(), before);
   EXPECT_EQ(alpha, fresh.max_step(close, nudge, nudge_x));
   EXPECT_LT(alpha, 1.0);
+  // 10 μm up from there: that move's candidates span 10 μm, so their reaches are about the
+  // slack (0.1 d̂) and a move inside their boxes checks their near pairs alone. From half-way
+  // up, 10 nm sideways is kept; a move down by 0.095 d̂, past the gap and still inside the
+  // boxes, is not, and is bounded as afresh.
+  ASSERT_LT(kept.min_active_distance(close), 0.01 * kDhat);
+  const Eigen::VectorXd up = -5e-4 * down;  // 10 μm
+  EXPECT_EQ(kept.max_step(close, up, model.surface_step(up)), 1.0);
+  const Eigen::VectorXd q_half = close.q + 0.5 * up;
+  const Configuration half{q_half, model.surface(q_half)};
+  kept.update(half);  // sorts out the near candidates
+  Eigen::VectorXd sideways = Eigen::VectorXd::Zero(q.size());
+  sideways[model.bodies[body_index(model, "block")].dof] = 1e-8;
+  const std::size_t kept_before = kept.kept_moves();
+  EXPECT_EQ(kept.max_step(half, sideways, model.surface_step(sideways)), 1.0);
+  EXPECT_EQ(kept.kept_moves(), kept_before + 1);
+  const Eigen::VectorXd closing = (0.095 * kDhat / 0.02) * down;
+  const Eigen::MatrixX3d closing_x = model.surface_step(closing);
+  BarrierTerm fresh_half(model, barrier_settings(model, f.settings), nullptr);
+  fresh_half.update(half);
+  const double closing_alpha = kept.max_step(half, closing, closing_x);
+  EXPECT_EQ(kept.kept_moves(), kept_before + 1);
+  EXPECT_EQ(closing_alpha, fresh_half.max_step(half, closing, closing_x));
+  EXPECT_LT(closing_alpha, 1.0);
 }
 
 TEST(EnergyTermsMaxStep, JointStepNeverCrossesTheHingeLimit) {

@@ -1,5 +1,7 @@
 #include <stiffsoft/coupling/contact/swept_candidates.hpp>
 
+#include <algorithm>
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
@@ -83,6 +85,11 @@ std::vector<double> SweptCandidates::reach_from(const Eigen::MatrixX3d& x) const
                                 .matrix()
                                 .norm();
   return reach;
+}
+
+void SweptCandidates::keep_near(Candidates near, const std::vector<double>& reach) {
+  m_near = std::move(near);
+  m_near_reach = reach.empty() ? 0.0 : *std::max_element(reach.begin(), reach.end());
 }
 
 void SweptCandidates::extend(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,

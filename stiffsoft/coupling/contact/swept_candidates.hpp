@@ -50,8 +50,10 @@ class SweptCandidates {
   /// keep_near() gave them (build_constraints over reach_from(); a resting pile's few percent);
   /// null before, and after extend() moved a body.
   const Candidates* near() const { return m_near ? &*m_near : nullptr; }
-  /// Keeps the near candidates found at a covered configuration (NearCandidates).
-  void keep_near(Candidates near) { m_near = std::move(near); }
+  /// The largest of the reaches near() was sorted out with (m).
+  double near_reach() const { return m_near_reach; }
+  /// Keeps the near candidates found at a covered configuration with these reaches (NearCandidates).
+  void keep_near(Candidates near, const std::vector<double>& reach);
   /// The candidates whose swept boxes overlap without any growth, for the CCD of the segment:
   /// what broad_phase(model, x0, x1, 0) finds, found in the same pass as all() (BroadPhase::find).
   const Candidates& for_ccd() const { return m_ccd; }
@@ -69,6 +71,7 @@ class SweptCandidates {
   Candidates m_ccd;            ///< for_ccd(), filled by the broad phase that fills m_all
   Candidates m_all;
   std::optional<Candidates> m_near;  ///< near()
+  double m_near_reach = 0;           ///< near_reach()
 };
 
 }  // namespace stiffsoft

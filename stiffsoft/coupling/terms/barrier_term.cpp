@@ -95,7 +95,7 @@ std::vector<ContactConstraint> BarrierTerm::covered_constraints(const Eigen::Mat
   Candidates near;
   const NearCandidates sort_out{reach, near};
   std::vector<ContactConstraint> out = build_constraints(m_model, x, m_swept->all(), m_settings.dhat, &sort_out);
-  m_swept->keep_near(std::move(near));
+  m_swept->keep_near(std::move(near), reach);
   return out;
 }
 
@@ -261,7 +261,15 @@ bool BarrierTerm::keeps_clear(const Configuration& c, const Eigen::MatrixX3d& x1
   if (!moved || !built_at(c.x)) return false;
   // The move's own broad phase would find a subset of these pairs (the moved bodies have none).
   const ClearMotion clear(m_constraints, c.x, x1, m_settings.dhat, ccd::CcdSettings{});
-  const Candidates& all = m_swept->all();
+  // Where no body left its boxes, a pair that is not near stays at least d̂ apart on the move,
+  // and its gap d changes by at most 4 R, R the largest reach. ACCD returns less than t_max only
+  // once d − ξ falls below s (d₀ − ξ), which needs d₀ − ξ > (d̂ − ξ) / s and then a change of
+  // more than (1 − s)(d̂ − ξ) / s (9 d̂ with the defaults): with R well below that, such pairs
+  // would return t_max and need no test.
+  const ccd::CcdSettings ccd_settings{};
+  const double no_cut = (1 - ccd_settings.tolerance) * (m_settings.dhat - ccd_settings.min_distance) / ccd_settings.tolerance;
+  const bool near_suffice = moved->empty() && m_swept->near() && 8 * m_swept->near_reach() <= no_cut;
+  const Candidates& all = near_suffice ? *m_swept->near() : m_swept->all();
   const CollisionMesh& mesh = m_model.mesh;
   const auto vertex_face_clear = [&](const std::array<int, 2>& k) {
     return clear.is_clear({k[0], mesh.F(k[1], 0), mesh.F(k[1], 1), mesh.F(k[1], 2)});
