@@ -260,13 +260,13 @@ bool BarrierTerm::keeps_clear(const Configuration& c, const Eigen::MatrixX3d& x1
   const std::optional<std::vector<int>> moved = m_swept->extension(m_model, c.x, x1);
   if (!moved || !built_at(c.x)) return false;
   // The move's own broad phase would find a subset of these pairs (the moved bodies have none).
-  const ClearMotion clear(m_constraints, c.x, x1, m_settings.dhat, ccd::CcdSettings{});
+  const ccd::CcdSettings ccd_settings{};  // the queries' own
+  const ClearMotion clear(m_constraints, c.x, x1, m_settings.dhat, ccd_settings);
   // Where no body left its boxes, a pair that is not near stays at least d̂ apart on the move,
   // and its gap d changes by at most 4 R, R the largest reach. ACCD returns less than t_max only
   // once d − ξ falls below s (d₀ − ξ), which needs d₀ − ξ > (d̂ − ξ) / s and then a change of
   // more than (1 − s)(d̂ − ξ) / s (9 d̂ with the defaults): with R well below that, such pairs
   // would return t_max and need no test.
-  const ccd::CcdSettings ccd_settings{};
   const double no_cut = (1 - ccd_settings.tolerance) * (m_settings.dhat - ccd_settings.min_distance) / ccd_settings.tolerance;
   const bool near_suffice = moved->empty() && m_swept->near() && 8 * m_swept->near_reach() <= no_cut;
   const Candidates& all = near_suffice ? *m_swept->near() : m_swept->all();
