@@ -161,9 +161,10 @@ Candidates sorted_pairs(Candidates c) {
 /// Moves every body of the model a few hundred calls' worth of small random steps (a
 /// tenth of the margin; each vertex also jitters, so soft bodies deform), one body now and
 /// then by 3 margins, alternating swept (x → x + step) and proximity (x + step) calls, and
-/// checks that BroadPhase finds exactly broad_phase's set at every call, and with it the set of
-/// the boxes before their growth (broad_phase with no inflation: equal here, since no two boxes
-/// of these random motions miss by less than 1e-9 of the inflation). Returns how many of
+/// checks that BroadPhase finds exactly broad_phase's set at every call, and with it the sets of
+/// the boxes before their growth and grown by 0.7 of it (broad_phase with those inflations: equal
+/// here, since no two boxes of these random motions miss by less than 1e-9 of the shrink; over
+/// the calls each set smaller than the next). Returns how many of
 /// the calls found some body pair's primitive pairs again and how many took every one from memory.
 std::pair<int, int> remembered_against_fresh(const Model& model, double margin, double inflation) {
   BroadPhase remembered(margin);
@@ -171,6 +172,7 @@ std::pair<int, int> remembered_against_fresh(const Model& model, double margin, 
   std::normal_distribution<double> normal(0.0, 1.0);
   Eigen::MatrixX3d x = model.surface(model.initial_q());
   int refreshing = 0, from_memory = 0;
+  std::size_t ungrown_pairs = 0, tighter_pairs = 0, grown_pairs = 0;  // over the calls
   for (int call = 0; call < 60; ++call) {
     Eigen::MatrixX3d step = Eigen::MatrixX3d::Zero(x.rows(), 3);
     for (std::size_t b = 0; b < model.bodies.size(); ++b) {
@@ -183,8 +185,9 @@ std::pair<int, int> remembered_against_fresh(const Model& model, double margin, 
     }
     const Eigen::MatrixX3d next = x + step;
     const Eigen::MatrixX3d& start = call % 2 ? next : x;
-    Candidates ungrown;
-    const Candidates found = sorted_pairs(remembered.find(model, start, next, inflation, &ungrown));
+    Candidates ungrown, tighter;
+    const Candidates found =
+        sorted_pairs(remembered.find(model, start, next, inflation, {{inflation, &ungrown}, {0.3 * inflation, &tighter}}));
     const Candidates fresh = sorted_pairs(broad_phase(model, start, next, inflation));
     EXPECT_EQ(found.vertex_face, fresh.vertex_face) << "call " << call;
     EXPECT_EQ(found.edge_edge, fresh.edge_edge) << "call " << call;
@@ -193,9 +196,18 @@ std::pair<int, int> remembered_against_fresh(const Model& model, double margin, 
     EXPECT_EQ(sorted_pairs(ungrown).edge_edge, fresh_ungrown.edge_edge) << "call " << call;
     EXPECT_LT(fresh_ungrown.vertex_face.size() + fresh_ungrown.edge_edge.size(),
               fresh.vertex_face.size() + fresh.edge_edge.size()) << "call " << call;
+    const Candidates fresh_tighter = sorted_pairs(broad_phase(model, start, next, 0.7 * inflation));
+    EXPECT_EQ(sorted_pairs(tighter).vertex_face, fresh_tighter.vertex_face) << "call " << call;
+    EXPECT_EQ(sorted_pairs(tighter).edge_edge, fresh_tighter.edge_edge) << "call " << call;
+    ungrown_pairs += fresh_ungrown.vertex_face.size() + fresh_ungrown.edge_edge.size();
+    tighter_pairs += fresh_tighter.vertex_face.size() + fresh_tighter.edge_edge.size();
+    grown_pairs += fresh.vertex_face.size() + fresh.edge_edge.size();
     if (call > 0) (remembered.refreshed_pairs() > 0 ? refreshing : from_memory) += 1;
     x = next;
   }
+  // The three growths give three different sets over the run (within a call two may coincide).
+  EXPECT_LT(ungrown_pairs, tighter_pairs);
+  EXPECT_LT(tighter_pairs, grown_pairs);
   return {refreshing, from_memory};
 }
 

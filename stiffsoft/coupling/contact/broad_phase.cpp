@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include <stiffsoft/coupling/contact/ordered_chunks.hpp>
 #include <stiffsoft/coupling/for_each_item.hpp>
@@ -255,36 +257,60 @@ void primitive_pairs(const Model& model, const PrimitiveBoxes& boxes, const std:
         [&](int e, int g) { out.edge_edge.push_back({std::min(e, g), std::max(e, g)}); });
 }
 
-/// Appends to `out` the pairs (i, j) of `pairs` whose boxes a[i] and b[j] overlap, in order,
-/// and, when `core` is given, to `core` those whose boxes still overlap shrunk by `shrink` on
-/// every side (the boxes before their growth). Most do in a resting pile, unpredictably: each
-/// pair is written and kept only when its boxes overlap, without a branch on it, into a block
-/// on the stack (not zero-filled, unlike a resized vector) that is then appended.
-void keep_overlapping(const std::vector<std::array<int, 2>>& pairs, const std::vector<Box>& a, const std::vector<Box>& b,
-                      std::vector<std::array<int, 2>>& out, std::vector<std::array<int, 2>>* core, double shrink) {
-  // Overlap of the shrunk boxes, x.lo + shrink ≤ y.hi − shrink, tested as a gap of the grown
-  // ones no smaller than 2·shrink less 1e-9 of it: a superset by far less than the CCD's own
-  // rounding allowance (additive_ccd.hpp), whose box test then rejects those pairs.
-  const double gap = 2 * shrink * (1 - 1e-9);
+/// The pairs of keep_overlapping() kept in each set, as written so far.
+using Shrunk = std::array<std::vector<std::array<int, 2>>*, BroadPhase::kMostShrunk>;
+
+/// keep_overlapping() with `Levels` shrunk sets, a compile-time count: the loop over them
+/// unrolled and their counts in registers (a loop over a run-time count took half as long again).
+template <std::size_t Levels>
+void keep_overlapping_in(const std::vector<std::array<int, 2>>& pairs, const std::vector<Box>& a, const std::vector<Box>& b,
+                         std::vector<std::array<int, 2>>& out, const Shrunk& shrunk,
+                         const std::array<double, BroadPhase::kMostShrunk>& shrink) {
+  // Overlap of the shrunk boxes, x.lo + shrink ≤ y.hi − shrink, tested as an overlap of the
+  // grown ones no smaller than 2·shrink less 1e-9 of it: a superset by far less than the CCD's
+  // own rounding allowance (additive_ccd.hpp), whose box test then rejects those pairs.
+  std::array<double, Levels + 1> gap{};
+  for (std::size_t l = 0; l < Levels; ++l) gap[l] = 2 * shrink[l] * (1 - 1e-9);
   constexpr std::size_t kBlock = 256;
-  std::array<int, 2> kept[kBlock], kept_core[kBlock];
+  std::array<int, 2> kept[kBlock], kept_shrunk[Levels + 1][kBlock];
   for (std::size_t begin = 0; begin < pairs.size(); begin += kBlock) {
     const std::size_t end = std::min(pairs.size(), begin + kBlock);
-    std::size_t count = 0, core_count = 0;
+    std::size_t count = 0;
+    std::array<std::size_t, Levels + 1> shrunk_count{};
     for (std::size_t k = begin; k < end; ++k) {
       const auto& pair = pairs[k];
       const Box& x = a[pair[0]];
       const Box& y = b[pair[1]];
+      // How far the boxes overlap along the axis where they overlap least (negative: a gap).
+      // u − v ≥ 0 exactly when u ≥ v, so the overlap test is exact.
+      const double overlap = std::min({y.hi[0] - x.lo[0], x.hi[0] - y.lo[0], y.hi[1] - x.lo[1], x.hi[1] - y.lo[1],
+                                       y.hi[2] - x.lo[2], x.hi[2] - y.lo[2]});
       kept[count] = pair;
-      count += (x.lo[0] <= y.hi[0]) & (y.lo[0] <= x.hi[0]) & (x.lo[1] <= y.hi[1]) & (y.lo[1] <= x.hi[1]) &
-               (x.lo[2] <= y.hi[2]) & (y.lo[2] <= x.hi[2]);
-      if (!core) continue;
-      kept_core[core_count] = pair;
-      core_count += (x.lo[0] + gap <= y.hi[0]) & (y.lo[0] + gap <= x.hi[0]) & (x.lo[1] + gap <= y.hi[1]) &
-                    (y.lo[1] + gap <= x.hi[1]) & (x.lo[2] + gap <= y.hi[2]) & (y.lo[2] + gap <= x.hi[2]);
+      count += overlap >= 0;
+      for (std::size_t l = 0; l < Levels; ++l) {
+        kept_shrunk[l][shrunk_count[l]] = pair;
+        shrunk_count[l] += overlap >= gap[l];
+      }
     }
     out.insert(out.end(), kept, kept + count);
-    if (core) core->insert(core->end(), kept_core, kept_core + core_count);
+    for (std::size_t l = 0; l < Levels; ++l)
+      shrunk[l]->insert(shrunk[l]->end(), kept_shrunk[l], kept_shrunk[l] + shrunk_count[l]);
+  }
+}
+
+/// Appends to `out` the pairs (i, j) of `pairs` whose boxes a[i] and b[j] overlap, in order,
+/// and to each of the first `levels` sets of `shrunk` those whose boxes still overlap shrunk by
+/// its `shrink` on every side. Most do in a resting pile, unpredictably: each pair is written
+/// and kept only when its boxes overlap, without a branch on it, into a block on the stack (not
+/// zero-filled, unlike a resized vector) that is then appended.
+void keep_overlapping(const std::vector<std::array<int, 2>>& pairs, const std::vector<Box>& a, const std::vector<Box>& b,
+                      std::vector<std::array<int, 2>>& out, const Shrunk& shrunk,
+                      const std::array<double, BroadPhase::kMostShrunk>& shrink, std::size_t levels) {
+  static_assert(BroadPhase::kMostShrunk == 2, "one case per count below");
+  switch (levels) {
+    case 0: keep_overlapping_in<0>(pairs, a, b, out, shrunk, shrink); break;
+    case 1: keep_overlapping_in<1>(pairs, a, b, out, shrunk, shrink); break;
+    default: keep_overlapping_in<2>(pairs, a, b, out, shrunk, shrink); break;
   }
 }
 
@@ -304,7 +330,11 @@ Candidates broad_phase(const Model& model, const Eigen::MatrixX3d& x0, const Eig
 }
 
 Candidates BroadPhase::find(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
-                            double inflation, Candidates* ungrown, std::vector<AxisBox>* bodies) {
+                            double inflation, const std::vector<ShrunkCandidates>& shrunk,
+                            std::vector<AxisBox>* bodies) {
+  if (shrunk.size() > kMostShrunk)
+    throw std::invalid_argument("BroadPhase::find: at most " + std::to_string(kMostShrunk) + " shrunk candidate sets, got " +
+                                std::to_string(shrunk.size()));
   const CollisionMesh& mesh = model.mesh;
   const PrimitiveBoxes now = primitive_boxes(mesh, x0, x1, inflation);
   const int nb = int(model.bodies.size());
@@ -345,12 +375,17 @@ Candidates BroadPhase::find(const Model& model, const Eigen::MatrixX3d& x0, cons
     return it->version_a == m_version[a] && it->version_b == m_version[b] ? &*it : nullptr;
   };
   std::vector<char> refreshed(pairs.size(), 0);
-  /// A chunk's pairs: those of the grown boxes, and those of the boxes before growth.
+  /// A chunk's pairs: those of the grown boxes, and those of each shrunk set.
   struct Found {
-    Candidates grown, ungrown;
+    Candidates grown;
+    std::array<Candidates, kMostShrunk> shrunk;
   };
+  std::array<double, kMostShrunk> shrink{};
+  for (std::size_t l = 0; l < shrunk.size(); ++l) {
+    shrink[l] = shrunk[l].shrink;
+    *shrunk[l].out = {};
+  }
   Candidates all;
-  if (ungrown) *ungrown = {};
   in_ordered_chunks<Found>(
       pairs.size(), 8,
       [&](std::size_t k, Found& out) {
@@ -364,13 +399,13 @@ Candidates BroadPhase::find(const Model& model, const Eigen::MatrixX3d& x0, cons
           refreshed[k] = 1;
         }
         keep_overlapping(p.pairs.vertex_face, now.vertex, now.face, out.grown.vertex_face,
-                         ungrown ? &out.ungrown.vertex_face : nullptr, inflation);
+                         {&out.shrunk[0].vertex_face, &out.shrunk[1].vertex_face}, shrink, shrunk.size());
         keep_overlapping(p.pairs.edge_edge, now.edge, now.edge, out.grown.edge_edge,
-                         ungrown ? &out.ungrown.edge_edge : nullptr, inflation);
+                         {&out.shrunk[0].edge_edge, &out.shrunk[1].edge_edge}, shrink, shrunk.size());
       },
       [&](const Found& part) {
         all.append(part.grown);
-        if (ungrown) ungrown->append(part.ungrown);
+        for (std::size_t l = 0; l < shrunk.size(); ++l) shrunk[l].out->append(part.shrunk[l]);
       });
   m_vertex = std::move(reference.vertex);
   m_face = std::move(reference.face);

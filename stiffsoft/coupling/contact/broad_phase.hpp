@@ -55,6 +55,14 @@ struct PrimitiveBoxes {
 PrimitiveBoxes primitive_boxes(const CollisionMesh& mesh, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
                                double inflation);
 
+/// Pairs BroadPhase::find also writes, from the same pass: those whose boxes still overlap
+/// shrunk by `shrink` (m, at most the inflation) on every side, i.e. broad_phase(model, x0, x1,
+/// inflation − shrink)'s (and a few pairs whose boxes miss by less than 1e-9 · shrink).
+struct ShrunkCandidates {
+  double shrink;    ///< m
+  Candidates* out;  ///< replaced by those pairs
+};
+
 /// The broad phase of a run: the same candidates as broad_phase() at every call, found from
 /// memory where the bodies barely moved (a Verlet list per body pair). Each body keeps
 /// reference boxes, its vertices' boxes grown by `margin` when it last moved out of them; a
@@ -69,13 +77,15 @@ class BroadPhase {
   /// `margin` (m): how far a body may move beyond the boxes of the call that last found its
   /// pairs before they are found again.
   explicit BroadPhase(double margin) : m_margin(margin) {}
-  /// The candidates broad_phase(model, x0, x1, inflation) finds, as a set. With `ungrown`, also
-  /// those of broad_phase(model, x0, x1, 0) into it (and a few pairs whose boxes miss by less
-  /// than 1e-9 · inflation), from the same pass. With `body_boxes`, each body's box there: the
-  /// union of its vertices' boxes on the segment grown by `inflation` (one that meets nothing
-  /// for a body without vertices).
+  /// The candidates broad_phase(model, x0, x1, inflation) finds, as a set. With `shrunk` (at
+  /// most kMostShrunk), also those of smaller growths (ShrunkCandidates), from the same pass:
+  /// a shrink of `inflation` gives broad_phase(model, x0, x1, 0)'s. With `body_boxes`, each
+  /// body's box there: the union of its vertices' boxes on the segment grown by `inflation`
+  /// (one that meets nothing for a body without vertices).
   Candidates find(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, double inflation,
-                  Candidates* ungrown = nullptr, std::vector<AxisBox>* body_boxes = nullptr);
+                  const std::vector<ShrunkCandidates>& shrunk = {}, std::vector<AxisBox>* body_boxes = nullptr);
+  /// The most ShrunkCandidates one find() writes.
+  static constexpr std::size_t kMostShrunk = 2;
   /// Body pairs of the last find() whose primitive pairs were found again (the others came from memory).
   std::size_t refreshed_pairs() const { return m_refreshed; }
   /// Body pairs of the last find().

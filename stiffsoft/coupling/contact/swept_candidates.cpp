@@ -1,6 +1,8 @@
 #include <stiffsoft/coupling/contact/swept_candidates.hpp>
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
@@ -15,12 +17,19 @@ constexpr std::size_t kMostMovedBodies = 8;
 }  // namespace
 
 SweptCandidates::SweptCandidates(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
-                                 double proximity, double slack, BroadPhase& finder)
+                                 double proximity, double slack, BroadPhase& finder, std::optional<double> tight_slack)
     : m_lo(x0.array().min(x1.array())),
       m_hi(x0.array().max(x1.array())),
       m_slack(slack),
-      m_proximity(proximity),
-      m_all(finder.find(model, x0, x1, proximity + slack, &m_ccd, &m_region)) {}
+      m_proximity(proximity) {
+  std::vector<ShrunkCandidates> shrunk{{proximity + slack, &m_ccd}};
+  if (tight_slack) {
+    if (!(*tight_slack >= 0 && *tight_slack <= slack))
+      throw std::invalid_argument("SweptCandidates: tight_slack must be in [0, slack], got " + std::to_string(*tight_slack));
+    shrunk.push_back({slack - *tight_slack, &m_tight});
+  }
+  m_all = finder.find(model, x0, x1, proximity + slack, shrunk, &m_region);
+}
 
 bool SweptCandidates::covers(const Eigen::MatrixX3d& x) const {
   if (x.rows() != m_lo.rows()) return false;

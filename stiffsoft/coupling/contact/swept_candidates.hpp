@@ -22,9 +22,10 @@ class SweptCandidates {
   /// Broad phase of the segment x0 → x1 (|V|×3, m), every box grown by proximity + slack (m):
   /// pairs closer than 2·proximity at any configuration whose vertices lie within `slack`
   /// of their own swept boxes are candidates.
-  /// `finder` is the run's broad phase.
+  /// `finder` is the run's broad phase. With `tight_slack` (m, at most `slack`), tight() holds
+  /// the candidates whose boxes overlap grown by proximity + tight_slack only.
   SweptCandidates(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, double proximity,
-                  double slack, BroadPhase& finder);
+                  double slack, BroadPhase& finder, std::optional<double> tight_slack = std::nullopt);
   /// True when every vertex of x (|V|×3, m) lies within the slack of its swept box, so the
   /// candidates hold every pair of x closer than 2·proximity.
   bool covers(const Eigen::MatrixX3d& x) const;
@@ -57,6 +58,9 @@ class SweptCandidates {
   /// The candidates whose swept boxes overlap without any growth, for the CCD of the segment:
   /// what broad_phase(model, x0, x1, 0) finds, found in the same pass as all() (BroadPhase::find).
   const Candidates& for_ccd() const { return m_ccd; }
+  /// The candidates whose swept boxes on the first segment overlap grown by proximity plus the
+  /// constructor's `tight_slack` (none without one), found in the same pass as all().
+  const Candidates& tight() const { return m_tight; }
 
  private:
   /// The box of the body's (non-empty) vertices on the segment x0 → x1, grown by proximity + slack.
@@ -69,6 +73,7 @@ class SweptCandidates {
   double m_slack;              ///< allowed distance of a covered configuration from the swept boxes (m)
   double m_proximity;          ///< half the distance below which pairs are candidates (m)
   Candidates m_ccd;            ///< for_ccd(), filled by the broad phase that fills m_all
+  Candidates m_tight;          ///< tight(), likewise
   Candidates m_all;
   std::optional<Candidates> m_near;  ///< near()
   double m_near_reach = 0;           ///< near_reach()

@@ -44,7 +44,8 @@ void add_low_rank_blocks(const StencilJacobian& J, const contact::LowRankHessian
 /// (docs/benchmarks.md, session 48).
 constexpr double kSweptSlack = 0.1;
 /// A move's islands are joined by its candidate pairs whose swept boxes, grown by d̂/2 plus
-/// this, in d̂, meet (the slack the candidates had before session 48, so the same islands).
+/// this, in d̂, meet (SweptCandidates::tight; the slack the candidates had before session 48,
+/// so the same islands).
 constexpr double kIslandSlack = 0.01;
 /// Whether a step from distance d0 to d1 (both in m, d0 < d̂) releases a contact: leaves it
 /// 35–65 % of its way out of d̂, as Newton on the barrier's cubic tail does (half of it).
@@ -207,26 +208,22 @@ void BarrierTerm::join_coupled_blocks(const Configuration& c, const Eigen::Matri
     islands.join_blocks(blocks);
     last = blocks;
   };
-  // Joins the blocks of the pairs for which meets(vertex_face, i, j) holds.
-  const auto join_pairs = [&](const Candidates& pairs, const auto& meets) {
-    for (const auto& [v, f] : pairs.vertex_face)
-      if (meets(true, v, f)) join({block[v], block[mesh.F(f, 0)], block[mesh.F(f, 1)], block[mesh.F(f, 2)]});
+  // Joins the blocks of every pair.
+  const auto join_pairs = [&](const Candidates& pairs) {
+    for (const auto& [v, f] : pairs.vertex_face) join({block[v], block[mesh.F(f, 0)], block[mesh.F(f, 1)], block[mesh.F(f, 2)]});
     for (const auto& [ea, eb] : pairs.edge_edge)
-      if (meets(false, ea, eb)) join({block[mesh.E(ea, 0)], block[mesh.E(ea, 1)], block[mesh.E(eb, 0)], block[mesh.E(eb, 1)]});
+      join({block[mesh.E(ea, 0)], block[mesh.E(ea, 1)], block[mesh.E(eb, 0)], block[mesh.E(eb, 1)]});
   };
   if (m_move_clear) {
     // Every CCD bound of a kept move is 1, so its islands step alike; they are joined by the
     // pairs that can come within d̂ on it (all covered), few at rest.
     if (!m_swept->near()) covered_constraints(c.x);
-    join_pairs(*m_swept->near(), [](bool, int, int) { return true; });
+    join_pairs(*m_swept->near());
     return;
   }
-  m_swept.emplace(m_model, c.x, x1, 0.5 * m_settings.dhat, kSweptSlack * m_settings.dhat, m_broad_phase);
-  const PrimitiveBoxes boxes = primitive_boxes(mesh, c.x, x1, (0.5 + kIslandSlack) * m_settings.dhat);
-  join_pairs(m_swept->all(), [&](bool vertex_face, int i, int j) {
-    return vertex_face ? boxes.vertex[std::size_t(i)].overlaps(boxes.face[std::size_t(j)])
-                       : boxes.edge[std::size_t(i)].overlaps(boxes.edge[std::size_t(j)]);
-  });
+  m_swept.emplace(m_model, c.x, x1, 0.5 * m_settings.dhat, kSweptSlack * m_settings.dhat, m_broad_phase,
+                  kIslandSlack * m_settings.dhat);
+  join_pairs(m_swept->tight());
 }
 
 void BarrierTerm::max_step_per_island(const Configuration& c, const Eigen::VectorXd&, const Eigen::MatrixX3d& dx,
