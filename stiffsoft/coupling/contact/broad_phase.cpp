@@ -257,7 +257,7 @@ void primitive_pairs(const Model& model, const PrimitiveBoxes& boxes, const std:
         [&](int e, int g) { out.edge_edge.push_back({std::min(e, g), std::max(e, g)}); });
 }
 
-/// The pairs of keep_overlapping() kept in each set, as written so far.
+/// Where keep_overlapping() appends each shrunk set's pairs.
 using Shrunk = std::array<std::vector<std::array<int, 2>>*, BroadPhase::kMostShrunk>;
 
 /// keep_overlapping() with `Levels` shrunk sets, a compile-time count: the loop over them
@@ -269,7 +269,7 @@ void keep_overlapping_in(const std::vector<std::array<int, 2>>& pairs, const std
   // Overlap of the shrunk boxes, x.lo + shrink ≤ y.hi − shrink, tested as an overlap of the
   // grown ones no smaller than 2·shrink less 1e-9 of it: a superset by far less than the CCD's
   // own rounding allowance (additive_ccd.hpp), whose box test then rejects those pairs.
-  std::array<double, Levels + 1> gap{};
+  std::array<double, Levels + 1> gap{};  // Levels + 1 here and below: no zero-sized arrays
   for (std::size_t l = 0; l < Levels; ++l) gap[l] = 2 * shrink[l] * (1 - 1e-9);
   constexpr std::size_t kBlock = 256;
   std::array<int, 2> kept[kBlock], kept_shrunk[Levels + 1][kBlock];
