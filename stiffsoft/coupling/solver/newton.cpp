@@ -31,12 +31,18 @@ void update_all(const std::vector<EnergyTerm*>& terms, const Configuration& c) {
 /// The largest move of a surface point in the surface step dx (m); 0 without surface points.
 double largest_move(const Eigen::MatrixX3d& dx) { return dx.rows() ? dx.rowwise().norm().maxCoeff() : 0.0; }
 
-/// E at q + dq (surface step dx), or +∞ where CCD does not allow the whole move; leaves the
-/// terms updated there.
-double full_step_energy(const Model& model, const std::vector<EnergyTerm*>& terms, const Configuration& c,
-                        const Eigen::VectorXd& dq, const Eigen::MatrixX3d& dx) {
+/// Whether CCD allows the whole move dq (surface step dx) from c, with the terms updated at c
+/// (the barrier then tests a small move on its kept candidates alone: keeps_clear).
+bool full_step_allowed(const std::vector<EnergyTerm*>& terms, const Configuration& c, const Eigen::VectorXd& dq,
+                       const Eigen::MatrixX3d& dx) {
   for (const EnergyTerm* t : terms)
-    if (t->max_step(c, dq, dx) < 1) return std::numeric_limits<double>::infinity();
+    if (t->max_step(c, dq, dx) < 1) return false;
+  return true;
+}
+
+/// E at q + dq; leaves the terms updated there.
+double full_step_energy(const Model& model, const std::vector<EnergyTerm*>& terms, const Configuration& c,
+                        const Eigen::VectorXd& dq) {
   const Eigen::VectorXd q = c.q + dq;
   const Eigen::MatrixX3d x = model.surface(q);
   update_all(terms, {q, x});
@@ -183,8 +189,12 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
         Eigen::MatrixX3d dx_revised = model.surface_step(p_revised);
         bool unrevised_lower = false;
         if (largest_move(dx) < settings.tolerance * settings.h) {  // dx is still the unrevised step
-          const double E_revised = full_step_energy(model, terms, c, p_revised, dx_revised);
-          unrevised_lower = full_step_energy(model, terms, c, p, dx) < E_revised;
+          // Both moves bounded first, while the terms are at c; a move CCD cuts counts as +∞.
+          const bool revised_allowed = full_step_allowed(terms, c, p_revised, dx_revised);
+          const bool unrevised_allowed = full_step_allowed(terms, c, p, dx);
+          const double E_revised =
+              revised_allowed ? full_step_energy(model, terms, c, p_revised) : std::numeric_limits<double>::infinity();
+          unrevised_lower = unrevised_allowed && full_step_energy(model, terms, c, p) < E_revised;
           update_all(terms, c);
         }
         if (!unrevised_lower) {
