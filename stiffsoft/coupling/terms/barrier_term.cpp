@@ -76,6 +76,13 @@ void BarrierTerm::update(const Configuration& c) {
   // The contacts depend on c.x alone (whichever candidate set finds them, the pairs closer
   // than d̂ and their multiplicities are the same).
   if (built_at(c.x)) return;
+  // The last kKeptBuilds builds, most recent first, rotated through m_constraints: a surface
+  // among them takes its contacts back.
+  for (std::size_t k = 0; k < kKeptBuilds; ++k) {
+    m_constraints.swap(m_previous[k]);
+    m_constraints_at.swap(m_previous_at[k]);
+    if (built_at(c.x)) return;
+  }
   double dummy = 0;
   ScopedTimer timer(m_times ? m_times->broad_phase : dummy);
   if (m_swept && m_swept->covers(c.x)) {

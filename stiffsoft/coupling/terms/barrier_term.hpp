@@ -2,6 +2,7 @@
 /// @file κ Σ_k b(d_k(x), d̂): the IPC contact barrier over all active stencils (Li et al. 2020),
 /// with CCD-bounded steps and IPC's adaptive barrier stiffness.
 
+#include <array>
 #include <optional>
 #include <vector>
 
@@ -39,7 +40,8 @@ class BarrierTerm final : public EnergyTerm {
   /// See EnergyTerm::name.
   const char* name() const override { return "barrier"; }
   /// Rebuilds candidates and active contacts at c.x; nothing to do when c.x is, value for
-  /// value, where they were last built (a step's result, then the next step's start).
+  /// value, where they were last built (a step's result, then the next step's start) or in one
+  /// of the two builds before (those contacts are kept).
   void update(const Configuration& c) override;
   /// See EnergyTerm::value.
   double value(const Configuration& c) const override;
@@ -127,6 +129,12 @@ class BarrierTerm final : public EnergyTerm {
   bool m_balanced = false;
   std::vector<ContactConstraint> m_constraints;
   Eigen::MatrixX3d m_constraints_at;  ///< the surface m_constraints were built at
+  /// Builds before m_constraints that update() keeps (Newton's comparison of two full steps
+  /// returns to the iterate after building at both).
+  static constexpr std::size_t kKeptBuilds = 2;
+  /// The contacts of the kKeptBuilds builds before m_constraints, most recent first, and where.
+  std::array<std::vector<ContactConstraint>, kKeptBuilds> m_previous;
+  std::array<Eigen::MatrixX3d, kKeptBuilds> m_previous_at;
   /// Whether m_constraints were built at the surface x (the same numbers).
   bool built_at(const Eigen::MatrixX3d& x) const { return m_constraints_at.rows() == x.rows() && m_constraints_at == x; }
   std::vector<int> m_vertex_block;  ///< vertex_block of each surface vertex
