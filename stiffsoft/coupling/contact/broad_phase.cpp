@@ -41,8 +41,14 @@ void span(const Primitives& primitives, const std::vector<Box>& vertex, Eigen::I
   }
 }
 
-}  // namespace
+/// Boxes of every surface vertex, face and edge (rows of CollisionMesh's F and E) on the
+/// segment x0 → x1 (|V|×3 each, m), each vertex's box spanning both ends grown by the inflation
+/// (m) and each primitive's spanning its vertices' boxes.
+struct PrimitiveBoxes {
+  std::vector<AxisBox> vertex, face, edge;
+};
 
+/// PrimitiveBoxes of the segment x0 → x1 grown by `inflation` (m).
 PrimitiveBoxes primitive_boxes(const CollisionMesh& mesh, const Eigen::MatrixX3d& x0,
                                const Eigen::MatrixX3d& x1, double inflation) {
   // In tasks of 1024 primitives, each spanned in one call: one task or call per primitive
@@ -63,8 +69,6 @@ PrimitiveBoxes primitive_boxes(const CollisionMesh& mesh, const Eigen::MatrixX3d
   span_all(mesh.E, boxes.edge);
   return boxes;
 }
-
-namespace {
 
 /// The primitives in [begin, end) whose box meets `region`, keyed along `axis`, in id order.
 std::vector<Keyed> inside(const std::vector<Box>& boxes, int begin, int end, const Box& region,

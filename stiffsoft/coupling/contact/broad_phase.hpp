@@ -44,17 +44,6 @@ struct AxisBox {
   bool contains(const AxisBox& o) const { return (lo <= o.lo).all() && (o.hi <= hi).all(); }
 };
 
-/// Boxes of every surface vertex, face and edge (rows of CollisionMesh's F and E) on the
-/// segment x0 → x1 (|V|×3 each, m), each vertex's box spanning both ends grown by `inflation`
-/// (m) and each primitive's spanning its vertices' boxes: the boxes broad_phase() tests, with
-/// the same numbers.
-struct PrimitiveBoxes {
-  std::vector<AxisBox> vertex, face, edge;
-};
-/// PrimitiveBoxes of the segment x0 → x1 grown by `inflation` (m).
-PrimitiveBoxes primitive_boxes(const CollisionMesh& mesh, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
-                               double inflation);
-
 /// Pairs BroadPhase::find also writes, from the same pass: those whose boxes still overlap
 /// shrunk by `shrink` (m, at most the inflation) on every side, i.e. broad_phase(model, x0, x1,
 /// inflation − shrink)'s (and a few pairs whose boxes miss by less than 1e-9 · shrink).
