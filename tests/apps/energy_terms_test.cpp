@@ -666,6 +666,50 @@ TEST(EnergyTermsFriction, RevisedStencilsKeepTheMajorizerUntilTheNextLag) {
   EXPECT_GT(relative_error(revised, exact), 1e-3);
 }
 
+// The normal forces friction_lag_error asks for at a step's result keep their stencils for the
+// next step's lag there: that lag must equal a fresh one, and a lag elsewhere or with another κ
+// must not take them.
+TEST(EnergyTermsFriction, LagAfterTheNormalForcesAtTheSamePointEqualsAFreshLag) {
+  Fixture f;
+  BarrierTerm& barrier = f.step.barrier;
+  const double epsv_h = f.settings.eps_v * f.settings.h;
+  const Eigen::MatrixX3d x = f.model.surface(f.q);
+  const Configuration c{f.q, x}, c_n{f.step.q_n, f.step.x_n};
+  // Friction's value and gradient at a third point, after a lag at `at` (the barrier there).
+  const auto lagged = [&](FrictionTerm& friction, const Configuration& at) {
+    barrier.update(at);
+    friction.lag(at, barrier);
+    const Eigen::VectorXd q2 = f.q + 0.5 * (f.q - f.step.q_n);
+    const Eigen::MatrixX3d x2 = f.model.surface(q2);
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(q2.size());
+    friction.add_gradient({q2, x2}, g);
+    return std::make_pair(friction.value({q2, x2}), g);
+  };
+  const auto forces_at = [&](FrictionTerm& friction, const Configuration& at) {
+    barrier.update(at);
+    return friction.normal_force_per_body(at, barrier);
+  };
+  FrictionTerm fresh(f.model, f.settings.mu, epsv_h), made(f.model, f.settings.mu, epsv_h);
+  const auto fresh_lag = lagged(fresh, c);
+  EXPECT_EQ(forces_at(made, c), fresh.normal_force_per_body());
+  const auto made_lag = lagged(made, c);
+  EXPECT_EQ(made_lag.first, fresh_lag.first);
+  EXPECT_EQ(made_lag.second, fresh_lag.second);
+  EXPECT_GT(fresh_lag.first, 0.0);
+  // Made at c, lagged at the step's start: the stencils of c_n.
+  FrictionTerm elsewhere(f.model, f.settings.mu, epsv_h), fresh_n(f.model, f.settings.mu, epsv_h);
+  forces_at(elsewhere, c);
+  EXPECT_EQ(lagged(elsewhere, c_n), lagged(fresh_n, c_n));
+  EXPECT_NE(lagged(fresh_n, c_n).first, fresh_lag.first);
+  // Made with κ, lagged with 2 κ at the same point: the normal forces of 2 κ.
+  FrictionTerm stiffer(f.model, f.settings.mu, epsv_h), fresh_stiffer(f.model, f.settings.mu, epsv_h);
+  forces_at(stiffer, c);
+  barrier.restore_stiffness(2 * barrier.kappa(), barrier.kappa_balanced());
+  const auto stiffer_lag = lagged(stiffer, c);
+  EXPECT_EQ(stiffer_lag, lagged(fresh_stiffer, c));
+  EXPECT_NE(stiffer_lag.first, fresh_lag.first);
+}
+
 // At the step's start every friction stencil sticks (u = 0): sliding the block along x by δ
 // moves the block–pad stencils by δ across their (horizontal) contact planes and the pad–ground
 // ones not at all, so the stick-zone step is δ / (ε_v h). Once the block has slid 3 ε_v h, its

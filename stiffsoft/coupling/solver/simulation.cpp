@@ -213,9 +213,9 @@ StepStats Simulation::step() {
   return stats;
 }
 
-double Simulation::friction_lag_error(const Configuration& c) const {
+double Simulation::friction_lag_error(const Configuration& c) {
   const std::vector<double> lagged = m_friction->normal_force_per_body();
-  const std::vector<double> now = FrictionTerm::normal_force_per_body(m_model, c, m_barrier);
+  const std::vector<double> now = m_friction->normal_force_per_body(c, m_barrier);
   // λ is in the incremental potential's units (force × β h²): a change μ Δλ of the friction
   // moves the step's result by δq = μ Δλ / m, and its velocity by c δq / h.
   const double h_over_c = m_settings.h / velocity_coefficient(m_settings.integrator);

@@ -111,8 +111,9 @@ class Simulation {
   /// − Σ_k λ_k(lagged)| / (h m_b), c_v from velocity_coefficient (λ in the incremental
   /// potential's units). Force moving between a body's contacts, turned tangent bases and
   /// torques are not seen; a soft body counts as its whole mass. c must be the barrier's
-  /// current configuration (update() done).
-  double friction_lag_error(const Configuration& c) const;
+  /// current configuration (update() done). The friction term keeps the stencils it makes at c
+  /// for the next lag there (the next step's).
+  double friction_lag_error(const Configuration& c);
   /// Newton's starting point: every dynamic body moved rigidly (p from q̃, A turned by
   /// exp([ω]× h)), kinematic bodies onto their target (q̃), as far along the straight line from
   /// qⁿ as CCD allows; bodies in contact at qⁿ start without q̃'s free fall β h² g (they rest

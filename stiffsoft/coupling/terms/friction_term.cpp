@@ -36,10 +36,14 @@ void FrictionTerm::relag(const Configuration& c, const BarrierTerm& barrier) {
   m_majorized.assign(n, 0);
   m_slip.assign(n, Slip::None);
   m_jacobians.resize(n, StencilJacobian(m_model, {-1, -1, -1, -1}));  // every one set below
+  const bool made = made_at(c, barrier);
+  if (made) m_stencils.swap(m_made.stencils);
+  m_made.constraints.clear();  // used up (the buffers kept for the next step's)
   for_each_item(n, kRelagGrain, [&](std::size_t k) {
     const ContactConstraint& constraint = constraints[k];
-    m_stencils[k] = contact::make_friction_stencil(constraint.stencil, gather(c.x, constraint.vertices), barrier.dhat(),
-                                                   barrier.kappa() * constraint.weight);
+    if (!made)
+      m_stencils[k] = contact::make_friction_stencil(constraint.stencil, gather(c.x, constraint.vertices),
+                                                     barrier.dhat(), barrier.kappa() * constraint.weight);
     m_vertices[k] = constraint.vertices;
     m_lagged[k] = gather(m_x_lag, constraint.vertices);
     m_jacobians[k] = StencilJacobian(m_model, constraint.vertices);
@@ -66,19 +70,32 @@ std::vector<double> FrictionTerm::normal_force_per_body() const {
   return sums;
 }
 
-std::vector<double> FrictionTerm::normal_force_per_body(const Model& model, const Configuration& c,
-                                                        const BarrierTerm& barrier) {
+std::vector<double> FrictionTerm::normal_force_per_body(const Configuration& c, const BarrierTerm& barrier) {
   const std::vector<ContactConstraint>& constraints = barrier.constraints();
-  std::vector<double> lambda(constraints.size());
+  m_made.stencils.resize(constraints.size());
   for_each_item(constraints.size(), kRelagGrain, [&](std::size_t k) {
     const ContactConstraint& constraint = constraints[k];
-    lambda[k] = contact::make_friction_stencil(constraint.stencil, gather(c.x, constraint.vertices), barrier.dhat(),
-                                               barrier.kappa() * constraint.weight)
-                    .normal_force;
+    m_made.stencils[k] = contact::make_friction_stencil(constraint.stencil, gather(c.x, constraint.vertices),
+                                                        barrier.dhat(), barrier.kappa() * constraint.weight);
   });
-  std::vector<double> sums(model.bodies.size(), 0.0);  // summed in the constraints' order, as before
-  for (std::size_t k = 0; k < constraints.size(); ++k) add_per_body(model, constraints[k].vertices, lambda[k], sums);
+  m_made.constraints = constraints;
+  m_made.at = c.x;
+  m_made.kappa = barrier.kappa();
+  std::vector<double> sums(m_model.bodies.size(), 0.0);  // summed in the constraints' order, as before
+  for (std::size_t k = 0; k < constraints.size(); ++k)
+    add_per_body(m_model, constraints[k].vertices, m_made.stencils[k].normal_force, sums);
   return sums;
+}
+
+bool FrictionTerm::made_at(const Configuration& c, const BarrierTerm& barrier) const {
+  const std::vector<ContactConstraint>& constraints = barrier.constraints();
+  const auto same = [](const ContactConstraint& a, const ContactConstraint& b) {
+    return a.vertices == b.vertices && a.weight == b.weight && a.stencil.kind == b.stencil.kind &&
+           a.stencil.eps_x == b.stencil.eps_x && a.stencil.segment_distance == b.stencil.segment_distance;
+  };
+  return m_made.stencils.size() == constraints.size() && m_made.kappa == barrier.kappa() &&
+         m_made.at.rows() == c.x.rows() && m_made.at == c.x &&
+         std::equal(constraints.begin(), constraints.end(), m_made.constraints.begin(), m_made.constraints.end(), same);
 }
 
 contact::Vector12d FrictionTerm::displacement(const Configuration& c, size_t k) const {

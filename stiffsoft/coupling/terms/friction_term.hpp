@@ -48,9 +48,10 @@ class FrictionTerm final : public EnergyTerm {
   /// Σ_k λ_k over the lagged stencils that touch each body (indexed like Model::bodies; a
   /// stencil between two bodies counts for both), in the energy's units.
   std::vector<double> normal_force_per_body() const;
-  /// The same sums for the barrier's active set at c: what lag(c, barrier) would give.
-  static std::vector<double> normal_force_per_body(const Model& model, const Configuration& c,
-                                                   const BarrierTerm& barrier);
+  /// The same sums for the barrier's active set at c: what lag(c, barrier) would give. Keeps
+  /// the stencils it makes, which the next lag or relag at c, with the same contacts and κ,
+  /// takes instead of making them again (the next step starts where this one ends).
+  std::vector<double> normal_force_per_body(const Configuration& c, const BarrierTerm& barrier);
   /// Number of lagged friction stencils.
   size_t size() const { return m_stencils.size(); }
 
@@ -85,6 +86,16 @@ class FrictionTerm final : public EnergyTerm {
   /// Whether each stencil has been switched to its majorizer (revise_hessian; cleared by relag)
   mutable std::vector<char> m_majorized;
   std::vector<Slip> m_slip;  ///< each stencil's Slip at the last accepted iterate (None before the first)
+  /// Stencils normal_force_per_body(c, barrier) made, with what they were made from.
+  struct Made {
+    std::vector<contact::FrictionStencil> stencils;
+    std::vector<ContactConstraint> constraints;  ///< the barrier's, with stencil, vertices and weight
+    Eigen::MatrixX3d at;                         ///< c.x
+    double kappa = 0;                            ///< the barrier's κ
+  };
+  Made m_made;
+  /// Whether m_made holds the stencils relag(c, barrier) would make.
+  bool made_at(const Configuration& c, const BarrierTerm& barrier) const;
   int m_flips = 0;            ///< see stick_slip_flips
 };
 
