@@ -283,3 +283,19 @@ TEST(NewtonMinimize, CountsTheLineSearchHalvings) {
   EXPECT_GT(report.line_search_halvings, 0);
   EXPECT_EQ(report.line_search_steps, report.iterations + report.line_search_halvings);
 }
+
+TEST(NewtonMinimize, IslandsMoveByTheirOwnBoundsOnlyWhereThatDescends) {
+  // Island 0 is cut at a quarter, island 1 not at all.
+  const std::vector<double> bound{0.25, 1.0};
+  // Both parts of p descend: each island by its own bound, or α where that is smaller.
+  EXPECT_EQ(island_multiples(bound, 1.0, {-3.0, -1.0}), (std::vector<double>{0.25, 1.0}));
+  EXPECT_EQ(island_multiples(bound, 0.5, {-3.0, -1.0}), (std::vector<double>{0.25, 0.5}));
+  // An inexact direction: island 1's part ascends, the whole of p descends (−3 + 1 < 0). Cut
+  // to its own bound, island 0 no longer outweighs it (0.25 · −3 + 1 > 0): every island moves
+  // by the smallest multiple, along p itself, which descends.
+  EXPECT_EQ(island_multiples(bound, 1.0, {-3.0, 1.0}), (std::vector<double>{0.25, 0.25}));
+  // Where the islands' own multiples still descend (0.25 · −3 + 0.5 < 0), they stay.
+  EXPECT_EQ(island_multiples(bound, 1.0, {-3.0, 0.5}), (std::vector<double>{0.25, 1.0}));
+  // One island: its multiple, whatever the slope.
+  EXPECT_EQ(island_multiples({0.5}, 1.0, {2.0}), (std::vector<double>{0.5}));
+}

@@ -49,6 +49,17 @@ double full_step_energy(const Model& model, const std::vector<EnergyTerm*>& term
   return total_energy(terms, {q, x});
 }
 
+/// gᵀ dq over each island's DOF blocks (islands numbered), summed block by block in order.
+std::vector<double> island_slopes(const Model& model, const BlockIslands& islands, const Eigen::VectorXd& g,
+                                  const Eigen::VectorXd& dq) {
+  std::vector<double> slope(std::size_t(islands.count()), 0.0);
+  for (std::size_t b = 0; b < model.blocks.size(); ++b) {
+    const DofBlock& block = model.blocks[b];
+    slope[std::size_t(islands.island(int(b)))] += g.segment(block.offset, block.size).dot(dq.segment(block.offset, block.size));
+  }
+  return slope;
+}
+
 /// The Newton direction p = −H⁻¹g; if the projected Hessian is numerically singular, shifts
 /// its diagonal until the factorisation succeeds. The solver reads H's blocks in place, or,
 /// with joints' eliminated equalities, the reduced compressed matrix.
@@ -101,6 +112,18 @@ void accumulate(NewtonReport& total, const NewtonReport& next) {
   total.linear_fallbacks += next.linear_fallbacks;
   if (total.linear_failure.empty()) total.linear_failure = next.linear_failure;
   total.failure = next.failure;
+}
+
+std::vector<double> island_multiples(const std::vector<double>& bound, double alpha, const std::vector<double>& slope) {
+  std::vector<double> multiple(bound.size());
+  double descent = 0;
+  for (std::size_t i = 0; i < bound.size(); ++i) {
+    multiple[i] = std::min(bound[i], alpha);
+    descent += multiple[i] * slope[i];
+  }
+  if (!(descent < 0) && !multiple.empty())
+    std::fill(multiple.begin(), multiple.end(), *std::min_element(multiple.begin(), multiple.end()));
+  return multiple;
 }
 
 NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>& terms,
@@ -317,8 +340,7 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
     const auto go_straight = [&](double a) {  // the straight line from α = a
       if (!line) line = move_bounds(p, dx);
       straight = true;
-      scale = line->bound;
-      for (double& s : scale) s = std::min(s, a);
+      scale = island_multiples(line->bound, a, island_slopes(model, line->islands, g, p));
       alpha = *std::max_element(scale.begin(), scale.end());
     };
     if (straight) go_straight(1.0);

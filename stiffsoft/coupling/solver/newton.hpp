@@ -90,6 +90,13 @@ struct NewtonReport {
 /// is the smaller one, and the outcome (converged, energy, last step speed, failure) is `next`'s.
 void accumulate(NewtonReport& total, const NewtonReport& next);
 
+/// The straight line search's multiple of p for each island (bound: its CCD bounds, slope: gᵀp
+/// over its blocks), from α: min(bound_i, α), or where those would not descend (Σ_i multiple_i
+/// slope_i ≥ 0) the smallest of them for every island. Each island's part of an exact Newton
+/// direction descends; an inexact solve's or the entering springs' need not, and halving
+/// multiples that ascend never lowers E (docs/newton.md, session 50).
+std::vector<double> island_multiples(const std::vector<double>& bound, double alpha, const std::vector<double>& slope);
+
 /// Minimises Σ terms over q, starting from (and overwriting) q. Terms get update() at every
 /// configuration they are evaluated at. With an iterative linear solver the Krylov tolerance
 /// of each solve follows Eisenstat–Walker's forcing terms (linear_solver/forcing_term.hpp);
