@@ -168,14 +168,12 @@ bool BarrierTerm::revise_hessian(const Configuration& c, const Eigen::VectorXd&,
   };
   bool revised = false;
   const double dhat = m_settings.dhat;
+  const std::vector<double>& d2_0 = squared_distances(c);
+  const std::vector<double>& d2_1 = squared_distances(c, &dx);
   assemble_in_chunks<Revision>(
       m_constraints.size(),
       [&](size_t k, Revision& out) {
-        const ContactConstraint& s = m_constraints[k];
-        const contact::Vector12d x0 = gather(c.x, s.vertices);
-        const double d0 = std::sqrt(contact::stencil_squared_distance(s.stencil, x0));
-        const double d1 = std::sqrt(contact::stencil_squared_distance(s.stencil, x0 + gather(dx, s.vertices)));
-        out.released = releases(d0, d1, dhat);
+        out.released = releases(std::sqrt(d2_0[k]), std::sqrt(d2_1[k]), dhat);
         // H holds the stencil's whole Hessian: adding fraction − 1 of it leaves fraction.
         if (out.released) stencil_hessian(c, k, fraction - 1.0, out.blocks);
       },
@@ -360,35 +358,43 @@ void BarrierTerm::ccd_bounds(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d&
   for (std::size_t i = 0; i < bound.size(); ++i) bound[i] = std::min(bound[i], t_max[i]);
 }
 
+const std::vector<double>& BarrierTerm::squared_distances(const Configuration& c, const Eigen::MatrixX3d* dx) const {
+  SquaredDistances& kept = m_squared[dx ? 1 : 0];
+  const auto same = [](const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b) { return a.rows() == b.rows() && a == b; };
+  const bool here = built_at(c.x);  // kept only for the contacts built at c.x
+  if (here && kept.d2.size() == m_constraints.size() && same(kept.at, c.x) && (!dx || same(kept.dx, *dx)))
+    return kept.d2;
+  kept.d2.resize(m_constraints.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, m_constraints.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i < r.end(); ++i) {
+      const ContactConstraint& k = m_constraints[i];
+      contact::Vector12d x = gather(c.x, k.vertices);
+      if (dx) x += gather(*dx, k.vertices);
+      kept.d2[i] = contact::stencil_squared_distance(k.stencil, x);
+    }
+  });
+  if (here)
+    kept.at = c.x;
+  else
+    kept.at.resize(0, 3);
+  if (dx) kept.dx = *dx;
+  return kept.d2;
+}
+
 double BarrierTerm::relative_gap_change(const Configuration& c, const Eigen::MatrixX3d& dx) const {
-  // max is exact in any order: the same result whatever the thread count.
-  return tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, m_constraints.size(), 256), 0.0,
-      [&](const tbb::blocked_range<size_t>& r, double worst) {
-        for (size_t i = r.begin(); i < r.end(); ++i) {
-          const ContactConstraint& k = m_constraints[i];
-          const contact::Vector12d x0 = gather(c.x, k.vertices);
-          const contact::Vector12d x1 = x0 + gather(dx, k.vertices);
-          const double d0 = std::sqrt(contact::stencil_squared_distance(k.stencil, x0));
-          const double d1 = std::sqrt(contact::stencil_squared_distance(k.stencil, x1));
-          worst = std::max(worst, std::abs(d1 - d0) / d0);
-        }
-        return worst;
-      },
-      [](double a, double b) { return std::max(a, b); });
+  const std::vector<double>& d2_0 = squared_distances(c);
+  const std::vector<double>& d2_1 = squared_distances(c, &dx);
+  double worst = 0;  // max is exact in any order
+  for (size_t i = 0; i < d2_0.size(); ++i) {
+    const double d0 = std::sqrt(d2_0[i]);
+    worst = std::max(worst, std::abs(std::sqrt(d2_1[i]) - d0) / d0);
+  }
+  return worst;
 }
 
 double BarrierTerm::min_active_distance(const Configuration& c) const {
-  const double d2 = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, m_constraints.size(), 256), std::numeric_limits<double>::infinity(),
-      [&](const tbb::blocked_range<size_t>& r, double smallest) {
-        for (size_t i = r.begin(); i < r.end(); ++i)
-          smallest = std::min(smallest, contact::stencil_squared_distance(m_constraints[i].stencil,
-                                                                          gather(c.x, m_constraints[i].vertices)));
-        return smallest;
-      },
-      [](double a, double b) { return std::min(a, b); });
-  return std::sqrt(d2);
+  const std::vector<double>& d2 = squared_distances(c);
+  return std::sqrt(d2.empty() ? std::numeric_limits<double>::infinity() : *std::min_element(d2.begin(), d2.end()));
 }
 
 bool BarrierTerm::end_iteration(const Configuration& c) {

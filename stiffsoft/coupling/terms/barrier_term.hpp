@@ -137,6 +137,16 @@ class BarrierTerm final : public EnergyTerm {
   std::array<Eigen::MatrixX3d, kKeptBuilds> m_previous_at;
   /// Whether m_constraints were built at the surface x (the same numbers).
   bool built_at(const Eigen::MatrixX3d& x) const { return m_constraints_at.rows() == x.rows() && m_constraints_at == x; }
+  /// d² of every active contact at c.x (where m_constraints were built), and at c.x + dx when
+  /// dx is given: computed once per surface and move, and read by every pass over the contacts
+  /// that needs them (revise_hessian, relative_gap_change, min_active_distance).
+  const std::vector<double>& squared_distances(const Configuration& c, const Eigen::MatrixX3d* dx = nullptr) const;
+  /// squared_distances' results: where, the move (empty at c.x itself), the values.
+  struct SquaredDistances {
+    Eigen::MatrixX3d at, dx;
+    std::vector<double> d2;
+  };
+  mutable std::array<SquaredDistances, 2> m_squared;  ///< [0]: at c.x, [1]: at c.x + dx
   std::vector<int> m_vertex_block;  ///< vertex_block of each surface vertex
   /// The run's broad phase, which remembers body pairs' primitive pairs between calls.
   mutable BroadPhase m_broad_phase;
