@@ -81,6 +81,7 @@ void BarrierTerm::update(const Configuration& c) {
   for (std::size_t k = 0; k < kKeptBuilds; ++k) {
     m_constraints.swap(m_previous[k]);
     m_constraints_at.swap(m_previous_at[k]);
+    std::swap(m_build, m_previous_build[k]);
     if (built_at(c.x)) return;
   }
   double dummy = 0;
@@ -92,6 +93,7 @@ void BarrierTerm::update(const Configuration& c) {
     m_constraints = build_constraints(m_model, c.x, candidates, m_settings.dhat);
   }
   m_constraints_at = c.x;
+  m_build = ++m_builds;
 }
 
 std::vector<ContactConstraint> BarrierTerm::covered_constraints(const Eigen::MatrixX3d& x) const {
@@ -360,10 +362,7 @@ void BarrierTerm::ccd_bounds(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d&
 
 const std::vector<double>& BarrierTerm::squared_distances(const Configuration& c, const Eigen::MatrixX3d* dx) const {
   SquaredDistances& kept = m_squared[dx ? 1 : 0];
-  const auto same = [](const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b) { return a.rows() == b.rows() && a == b; };
-  const bool here = built_at(c.x);  // kept only for the contacts built at c.x
-  if (here && kept.d2.size() == m_constraints.size() && same(kept.at, c.x) && (!dx || same(kept.dx, *dx)))
-    return kept.d2;
+  if (kept.build == m_build && (!dx || (kept.dx.rows() == dx->rows() && kept.dx == *dx))) return kept.d2;
   kept.d2.resize(m_constraints.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, m_constraints.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i < r.end(); ++i) {
@@ -373,10 +372,7 @@ const std::vector<double>& BarrierTerm::squared_distances(const Configuration& c
       kept.d2[i] = contact::stencil_squared_distance(k.stencil, x);
     }
   });
-  if (here)
-    kept.at = c.x;
-  else
-    kept.at.resize(0, 3);
+  kept.build = m_build;
   if (dx) kept.dx = *dx;
   return kept.d2;
 }
@@ -393,8 +389,14 @@ double BarrierTerm::relative_gap_change(const Configuration& c, const Eigen::Mat
 }
 
 double BarrierTerm::min_active_distance(const Configuration& c) const {
-  const std::vector<double>& d2 = squared_distances(c);
-  return std::sqrt(d2.empty() ? std::numeric_limits<double>::infinity() : *std::min_element(d2.begin(), d2.end()));
+  double smallest = std::numeric_limits<double>::infinity();
+  if (built_at(c.x)) {
+    for (double d2 : squared_distances(c)) smallest = std::min(smallest, d2);
+  } else {  // elsewhere (a result projected onto joints' equalities after the last build)
+    for (const ContactConstraint& k : m_constraints)
+      smallest = std::min(smallest, contact::stencil_squared_distance(k.stencil, gather(c.x, k.vertices)));
+  }
+  return std::sqrt(smallest);
 }
 
 bool BarrierTerm::end_iteration(const Configuration& c) {

@@ -3,6 +3,7 @@
 /// with CCD-bounded steps and IPC's adaptive barrier stiffness.
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -103,7 +104,7 @@ class BarrierTerm final : public EnergyTerm {
   /// Moves (max_step, join_coupled_blocks) served by the candidates kept from an earlier move,
   /// without a broad phase or a CCD query, because none of their pairs could close its gap.
   std::size_t kept_moves() const { return m_kept_moves; }
-  /// Smallest distance among active contacts at the last update (m), +∞ with none.
+  /// Smallest distance among the active contacts of the last update, at c.x (m), +∞ with none.
   double min_active_distance(const Configuration& c) const;
   /// Barrier force −κ ∇_x B on every surface vertex, |V|×3 (in energy units; divide by β h² for N).
   Eigen::MatrixX3d vertex_forces(const Configuration& c) const;
@@ -137,16 +138,20 @@ class BarrierTerm final : public EnergyTerm {
   std::array<Eigen::MatrixX3d, kKeptBuilds> m_previous_at;
   /// Whether m_constraints were built at the surface x (the same numbers).
   bool built_at(const Eigen::MatrixX3d& x) const { return m_constraints_at.rows() == x.rows() && m_constraints_at == x; }
-  /// d² of every active contact at c.x (where m_constraints were built), and at c.x + dx when
-  /// dx is given: computed once per surface and move, and read by every pass over the contacts
-  /// that needs them (revise_hessian, relative_gap_change, min_active_distance).
+  /// d² of every active contact at c.x, where they were built, and at c.x + dx when dx is
+  /// given: computed once per build and move, and read by every pass over the contacts that
+  /// needs them (revise_hessian, relative_gap_change, min_active_distance).
   const std::vector<double>& squared_distances(const Configuration& c, const Eigen::MatrixX3d* dx = nullptr) const;
-  /// squared_distances' results: where, the move (empty at c.x itself), the values.
+  /// squared_distances' results: of which build, the move (none at c.x itself), the values.
   struct SquaredDistances {
-    Eigen::MatrixX3d at, dx;
+    std::uint64_t build = 0;
+    Eigen::MatrixX3d dx;
     std::vector<double> d2;
   };
   mutable std::array<SquaredDistances, 2> m_squared;  ///< [0]: at c.x, [1]: at c.x + dx
+  std::uint64_t m_builds = 0;  ///< builds so far; each build's number identifies its contacts
+  std::uint64_t m_build = 0;   ///< the number of m_constraints' build (0: none yet)
+  std::array<std::uint64_t, kKeptBuilds> m_previous_build{};  ///< that of m_previous
   std::vector<int> m_vertex_block;  ///< vertex_block of each surface vertex
   /// The run's broad phase, which remembers body pairs' primitive pairs between calls.
   mutable BroadPhase m_broad_phase;
