@@ -101,6 +101,9 @@ class BarrierTerm final : public EnergyTerm {
   }
   /// Active contacts at the last update.
   const std::vector<ContactConstraint>& constraints() const { return m_constraints; }
+  /// The number of the build constraints() come from: equal numbers, the same contacts at the
+  /// same surface (a surface built again, or taken back from the kept builds, keeps its number).
+  std::uint64_t build() const { return m_build; }
   /// Moves (max_step, join_coupled_blocks) served by the candidates kept from an earlier move,
   /// without a broad phase or a CCD query, because none of their pairs could close its gap.
   std::size_t kept_moves() const { return m_kept_moves; }

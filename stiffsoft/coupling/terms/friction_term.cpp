@@ -36,9 +36,11 @@ void FrictionTerm::relag(const Configuration& c, const BarrierTerm& barrier) {
   m_majorized.assign(n, 0);
   m_slip.assign(n, Slip::None);
   m_jacobians.resize(n, StencilJacobian(m_model, {-1, -1, -1, -1}));  // every one set below
-  const bool made = made_at(c, barrier);
+  // What normal_force_per_body made for the barrier's contacts at c (update() at c), with this κ.
+  const bool made = m_made.barrier == &barrier && m_made.build == barrier.build() && m_made.build != 0 &&
+                    m_made.kappa == barrier.kappa();
   if (made) m_stencils.swap(m_made.stencils);
-  m_made.constraints.clear();  // used up (the buffers kept for the next step's)
+  m_made.build = 0;  // used up (the buffers kept for the next step's)
   for_each_item(n, kRelagGrain, [&](std::size_t k) {
     const ContactConstraint& constraint = constraints[k];
     if (!made)
@@ -78,24 +80,13 @@ std::vector<double> FrictionTerm::normal_force_per_body(const Configuration& c, 
     m_made.stencils[k] = contact::make_friction_stencil(constraint.stencil, gather(c.x, constraint.vertices),
                                                         barrier.dhat(), barrier.kappa() * constraint.weight);
   });
-  m_made.constraints = constraints;
-  m_made.at = c.x;
+  m_made.barrier = &barrier;
+  m_made.build = barrier.build();
   m_made.kappa = barrier.kappa();
   std::vector<double> sums(m_model.bodies.size(), 0.0);  // summed in the constraints' order, as before
   for (std::size_t k = 0; k < constraints.size(); ++k)
     add_per_body(m_model, constraints[k].vertices, m_made.stencils[k].normal_force, sums);
   return sums;
-}
-
-bool FrictionTerm::made_at(const Configuration& c, const BarrierTerm& barrier) const {
-  const std::vector<ContactConstraint>& constraints = barrier.constraints();
-  const auto same = [](const ContactConstraint& a, const ContactConstraint& b) {
-    return a.vertices == b.vertices && a.weight == b.weight && a.stencil.kind == b.stencil.kind &&
-           a.stencil.eps_x == b.stencil.eps_x && a.stencil.segment_distance == b.stencil.segment_distance;
-  };
-  return m_made.stencils.size() == constraints.size() && m_made.kappa == barrier.kappa() &&
-         m_made.at.rows() == c.x.rows() && m_made.at == c.x &&
-         std::equal(constraints.begin(), constraints.end(), m_made.constraints.begin(), m_made.constraints.end(), same);
 }
 
 contact::Vector12d FrictionTerm::displacement(const Configuration& c, size_t k) const {

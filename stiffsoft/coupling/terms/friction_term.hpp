@@ -3,6 +3,7 @@
 /// forces λ_k and tangent bases lagged at the step's start and u_k the tangential relative
 /// displacement over the step. Only built when μ > 0.
 
+#include <cstdint>
 #include <vector>
 
 #include <stiffsoft/coupling/contact/friction.hpp>
@@ -89,13 +90,11 @@ class FrictionTerm final : public EnergyTerm {
   /// Stencils normal_force_per_body(c, barrier) made, with what they were made from.
   struct Made {
     std::vector<contact::FrictionStencil> stencils;
-    std::vector<ContactConstraint> constraints;  ///< the barrier's, with stencil, vertices and weight
-    Eigen::MatrixX3d at;                         ///< c.x
-    double kappa = 0;                            ///< the barrier's κ
+    const BarrierTerm* barrier = nullptr;  ///< whose contacts
+    std::uint64_t build = 0;               ///< their build (BarrierTerm::build; 0: none)
+    double kappa = 0;                      ///< the barrier's κ
   };
   Made m_made;
-  /// Whether m_made holds the stencils relag(c, barrier) would make.
-  bool made_at(const Configuration& c, const BarrierTerm& barrier) const;
   int m_flips = 0;            ///< see stick_slip_flips
 };
 
