@@ -640,6 +640,43 @@ TEST(EnergyTermsBarrier, ReleasedContactsKeepReleaseHessianOfTheirHessian) {
 
 // A stencil once revised keeps its majorizer until friction is lagged again: the next Hessian
 // assembled is the revised one, and the same step's reversal revises nothing more.
+// value() and add_gradient() at the contacts' own surface take each stencil's d² from the
+// build's squared_distances(), which revise_hessian() and the stopping rule also fill: they must
+// be the energy and gradient of the surface asked for, whichever build the term returns to.
+TEST(EnergyTermsBarrier, ValueAndGradientAreTheStencilSumsAfterEveryBuild) {
+  Fixture f;
+  BarrierTerm& barrier = f.step.barrier;
+  const auto check = [&](const Configuration& c) {
+    barrier.update(c);
+    double sum = 0;
+    Eigen::VectorXd sum_gradient = Eigen::VectorXd::Zero(f.model.num_dofs);
+    for (const ContactConstraint& k : barrier.constraints()) {
+      const contact::Vector12d x = gather(c.x, k.vertices);
+      sum += barrier.kappa() * k.weight * contact::barrier_potential(k.stencil, x, barrier.dhat());
+      StencilJacobian(f.model, k.vertices)
+          .scatter_gradient(barrier.kappa() * k.weight * contact::barrier_potential_gradient(k.stencil, x, barrier.dhat()),
+                            sum_gradient);
+    }
+    ASSERT_GT(sum, 0);
+    EXPECT_NEAR(barrier.value(c), sum, kRoundOff * sum);
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(f.model.num_dofs);
+    barrier.add_gradient(c, g);
+    EXPECT_LT(relative_error(g, sum_gradient), kRoundOff);
+  };
+  const Configuration c{f.q, f.model.surface(f.q)};
+  const Eigen::VectorXd dq = 0.1 * (f.q - f.q_n);
+  const Eigen::VectorXd q_moved = f.q + dq;
+  const Configuration moved{q_moved, f.model.surface(q_moved)};
+  check(c);
+  // The distances at c and at its move, as a revision and the stopping rule ask for them.
+  BlockHessian H(f.model.blocks);
+  barrier.add_hessian(c, H);
+  barrier.revise_hessian(c, dq, f.model.surface_step(dq), H);
+  check(moved);  // a new build
+  check(c);      // c's build again, kept
+  check(moved);
+}
+
 TEST(EnergyTermsFriction, RevisedStencilsKeepTheMajorizerUntilTheNextLag) {
   Fixture f;
   FrictionTerm& friction = *f.step.friction;

@@ -37,7 +37,10 @@ ClosestPoints stencil_closest_points(const Stencil& s, const Vector12d& x) {
 }
 
 double barrier_potential(const Stencil& s, const Vector12d& x, double dhat) {
-  const double d2 = stencil_squared_distance(s, x);
+  return barrier_potential(s, x, stencil_squared_distance(s, x), dhat);
+}
+
+double barrier_potential(const Stencil& s, const Vector12d& x, double d2, double dhat) {
   if (d2 >= dhat * dhat) return 0.0;
   const double b = barrier(d2, dhat);
   return is_mollified(s) ? edge_edge_mollifier(x, s.eps_x) * b : b;
@@ -48,7 +51,10 @@ bool mollifier_active(const Stencil& s, const Vector12d& x) {
 }
 
 Vector12d barrier_potential_gradient(const Stencil& s, const Vector12d& x, double dhat) {
-  const double d2 = stencil_squared_distance(s, x);
+  return barrier_potential_gradient(s, x, stencil_squared_distance(s, x), dhat);
+}
+
+Vector12d barrier_potential_gradient(const Stencil& s, const Vector12d& x, double d2, double dhat) {
   if (d2 >= dhat * dhat) return Vector12d::Zero();
   const Vector12d grad_d2 = stencil_squared_distance_gradient(s, x);
   const double db = barrier_first_derivative(d2, dhat);

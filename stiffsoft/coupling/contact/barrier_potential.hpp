@@ -67,8 +67,16 @@ ClosestPoints stencil_closest_points(const Stencil& s, const Vector12d& x);
 /// multiply by κ for an energy. x: packed stencil, m; dhat: d̂, m.
 double barrier_potential(const Stencil& s, const Vector12d& x, double dhat);
 
+/// barrier_potential(s, x, dhat) with the stencil's d² = stencil_squared_distance(s, x) given
+/// (m²), for a caller that has it already: the same value, bit for bit.
+double barrier_potential(const Stencil& s, const Vector12d& x, double d2, double dhat);
+
 /// ∇P = m b'(d²) ∇d² + b ∇m, 12-vector, m³.
 Vector12d barrier_potential_gradient(const Stencil& s, const Vector12d& x, double dhat);
+
+/// barrier_potential_gradient(s, x, dhat) with d² = stencil_squared_distance(s, x) given (m²):
+/// the same gradient, bit for bit.
+Vector12d barrier_potential_gradient(const Stencil& s, const Vector12d& x, double d2, double dhat);
 
 /// ∇²P = m (b'' ∇d² ∇d²ᵀ + b' ∇²d²) + b' (∇m ∇d²ᵀ + ∇d² ∇mᵀ) + b ∇²m, 12×12, m².
 /// project_psd: clamp the negative eigenvalues of the active (3·vertex_count)² block to 0

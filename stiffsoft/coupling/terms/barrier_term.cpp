@@ -113,13 +113,17 @@ double BarrierTerm::value(const Configuration& c) const {
   // Deterministic: the same run gives the same energies, bit for bit, whatever the schedule.
   // Ranges of 64 stencils or fewer are summed in a loop (the split is fixed by the range
   // alone); split down to single stencils, the reduction's tasks cost as much as the barrier.
+  // At the contacts' own surface (every trial's) the distances are the build's.
+  const std::vector<double>* d2 = built_at(c.x) ? &squared_distances(c) : nullptr;
   const double sum = tbb::parallel_deterministic_reduce(
       tbb::blocked_range<size_t>(0, m_constraints.size(), 64), 0.0,
       [&](const tbb::blocked_range<size_t>& r, double acc) {
-        for (size_t k = r.begin(); k < r.end(); ++k)
-          acc += m_constraints[k].weight * contact::barrier_potential(m_constraints[k].stencil,
-                                                                      gather(c.x, m_constraints[k].vertices),
-                                                                      m_settings.dhat);
+        for (size_t k = r.begin(); k < r.end(); ++k) {
+          const ContactConstraint& s = m_constraints[k];
+          const contact::Vector12d x = gather(c.x, s.vertices);
+          acc += s.weight * (d2 ? contact::barrier_potential(s.stencil, x, (*d2)[k], m_settings.dhat)
+                                : contact::barrier_potential(s.stencil, x, m_settings.dhat));
+        }
         return acc;
       },
       std::plus<>());
@@ -127,11 +131,15 @@ double BarrierTerm::value(const Configuration& c) const {
 }
 
 void BarrierTerm::add_gradient(const Configuration& c, Eigen::VectorXd& g) const {
+  const std::vector<double>* d2 = built_at(c.x) ? &squared_distances(c) : nullptr;  // as in value()
   assemble_in_chunks<contact::Vector12d>(
       m_constraints.size(),
       [&](size_t k, contact::Vector12d& out) {
         const ContactConstraint& s = m_constraints[k];
-        out = m_kappa * s.weight * contact::barrier_potential_gradient(s.stencil, gather(c.x, s.vertices), m_settings.dhat);
+        const contact::Vector12d x = gather(c.x, s.vertices);
+        out = m_kappa * s.weight *
+              (d2 ? contact::barrier_potential_gradient(s.stencil, x, (*d2)[k], m_settings.dhat)
+                  : contact::barrier_potential_gradient(s.stencil, x, m_settings.dhat));
       },
       [&](size_t k, const contact::Vector12d& out) {
         StencilJacobian(m_model, m_constraints[k].vertices).scatter_gradient(out, g);
