@@ -6,8 +6,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <initializer_list>
 #include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace stiffsoft {
 
@@ -54,9 +58,15 @@ std::array<int, 4> pick(const std::array<int, 4>& candidate, const contact::Clas
   return v;
 }
 
-bool less(const ContactConstraint& a, const ContactConstraint& b) {
-  if (a.stencil.kind != b.stencil.kind) return a.stencil.kind < b.stencil.kind;
-  return a.vertices < b.vertices;
+/// Vertices below this index fit a sort key's 30 bits (with −1, unused, as 0).
+constexpr int kKeyedVertices = (1 << 30) - 1;
+
+/// The order of the kind, then the four vertices, as a pair of integers: the kind and the first
+/// two vertices + 1, then the last two, 30 bits each. Equal keys, the same contact.
+using SortKey = std::pair<std::uint64_t, std::uint64_t>;
+SortKey sort_key(const ContactConstraint& c) {
+  const auto v = [&](int i) { return std::uint64_t(c.vertices[std::size_t(i)] + 1); };
+  return {(std::uint64_t(c.stencil.kind) << 60) | (v(0) << 30) | v(1), (v(2) << 30) | v(3)};
 }
 
 }  // namespace
@@ -65,6 +75,10 @@ std::vector<ContactConstraint> build_constraints(const Model& model, const Eigen
                                                  const Candidates& candidates, double dhat,
                                                  const NearCandidates* sort_out) {
   const CollisionMesh& mesh = model.mesh;
+  if (x_by_column.rows() > kKeyedVertices)
+    throw std::length_error("build_constraints: " + std::to_string(x_by_column.rows()) +
+                            " surface vertices, more than the contacts' sort keys hold (" +
+                            std::to_string(kKeyedVertices) + ")");
   const PointRows x = x_by_column;  // each candidate reads its points from four places, not twelve
   const double dhat2 = dhat * dhat;
   // Rounding margin of the bounds' comparisons: far above their rounding, so the set is the one
@@ -147,24 +161,27 @@ std::vector<ContactConstraint> build_constraints(const Model& model, const Eigen
 
   std::size_t count = 0;
   for (const auto& l : local) count += l.size();
+  std::vector<ContactConstraint> found;
+  found.reserve(count);
+  for (const auto& l : local) found.insert(found.end(), l.begin(), l.end());
+  // Sorted by their keys with their places (integers compare in a fraction of the time the
+  // constraints' fields take). Constraints with equal keys differ only in their weights, integer
+  // multiplicities summed exactly below, and in the last bits of their distances, of which the
+  // smallest is kept: the merged list is the same whatever the order among them.
+  std::vector<std::pair<SortKey, std::uint32_t>> order(found.size());
+  for (std::size_t k = 0; k < found.size(); ++k) order[k] = {sort_key(found[k]), std::uint32_t(k)};
+  tbb::parallel_sort(order.begin(), order.end());
   std::vector<ContactConstraint> all;
-  all.reserve(count);
-  for (const auto& l : local) all.insert(all.end(), l.begin(), l.end());
-  // Constraints with equal keys differ only in their weights, integer multiplicities summed
-  // exactly below, and in the last bits of their distances, of which the smallest is kept: the
-  // merged list is the same whatever the sort's order among them, and so whatever the thread
-  // count. Merged in place.
-  tbb::parallel_sort(all.begin(), all.end(), less);
-  std::size_t merged = 0;
-  for (std::size_t k = 0; k < all.size(); ++k) {
-    if (merged > 0 && !less(all[merged - 1], all[k])) {
-      all[merged - 1].weight += all[k].weight;
-      all[merged - 1].distance = std::min(all[merged - 1].distance, all[k].distance);
+  all.reserve(found.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const ContactConstraint& c = found[order[k].second];
+    if (k > 0 && order[k].first == order[k - 1].first) {
+      all.back().weight += c.weight;
+      all.back().distance = std::min(all.back().distance, c.distance);
     } else {
-      all[merged++] = all[k];
+      all.push_back(c);
     }
   }
-  all.resize(merged);
   return all;
 }
 
