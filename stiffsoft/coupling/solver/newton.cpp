@@ -190,6 +190,9 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
       break;
     }
     Eigen::MatrixX3d dx = model.surface_step(p);
+    // A full step the comparison of two full steps below took, and its E: a trial there has it.
+    Eigen::VectorXd q_full;
+    double E_full = 0;
     bool revised = false;
     {
       ScopedTimer timer(times.assembly);
@@ -215,9 +218,14 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
           // Both moves bounded first, while the terms are at c; a move CCD cuts counts as +∞.
           const bool revised_allowed = full_step_allowed(terms, c, p_revised, dx_revised);
           const bool unrevised_allowed = full_step_allowed(terms, c, p, dx);
-          const double E_revised =
-              revised_allowed ? full_step_energy(model, terms, c, p_revised) : std::numeric_limits<double>::infinity();
-          unrevised_lower = unrevised_allowed && full_step_energy(model, terms, c, p) < E_revised;
+          constexpr double kCut = std::numeric_limits<double>::infinity();
+          const double E_revised = revised_allowed ? full_step_energy(model, terms, c, p_revised) : kCut;
+          const double E_unrevised = unrevised_allowed ? full_step_energy(model, terms, c, p) : kCut;
+          unrevised_lower = E_unrevised < E_revised;
+          if (unrevised_lower || revised_allowed) {
+            q_full = q + (unrevised_lower ? p : p_revised);
+            E_full = unrevised_lower ? E_unrevised : E_revised;
+          }
           update_all(terms, c);
         }
         if (!unrevised_lower) {
@@ -379,7 +387,8 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
       if (straight) q_trial = q + line->islands.scaled(model, p, scale);
       x_trial = model.surface(q_trial);
       update_all(terms, {q_trial, x_trial});
-      E_trial = total_energy(terms, {q_trial, x_trial});
+      const bool known = q_trial.size() == q_full.size() && q_trial == q_full;
+      E_trial = known ? E_full : total_energy(terms, {q_trial, x_trial});
       if (E_trial <= E + noise) {
         accepted = true;
         break;
