@@ -638,8 +638,6 @@ TEST(EnergyTermsBarrier, ReleasedContactsKeepReleaseHessianOfTheirHessian) {
   EXPECT_FALSE(unreleased.revise_hessian(c, dq, f.model.surface_step(dq), H));
 }
 
-// A stencil once revised keeps its majorizer until friction is lagged again: the next Hessian
-// assembled is the revised one, and the same step's reversal revises nothing more.
 // value() and add_gradient() at the contacts' own surface take each stencil's d² from the
 // build's squared_distances(), which revise_hessian() and the stopping rule also fill: they must
 // be the energy and gradient of the surface asked for, whichever build the term returns to.
@@ -677,6 +675,8 @@ TEST(EnergyTermsBarrier, ValueAndGradientAreTheStencilSumsAfterEveryBuild) {
   check(moved);
 }
 
+// A stencil once revised keeps its majorizer until friction is lagged again: the next Hessian
+// assembled is the revised one, and the same step's reversal revises nothing more.
 TEST(EnergyTermsFriction, RevisedStencilsKeepTheMajorizerUntilTheNextLag) {
   Fixture f;
   FrictionTerm& friction = *f.step.friction;
