@@ -143,7 +143,8 @@ class BarrierTerm final : public EnergyTerm {
   bool built_at(const Eigen::MatrixX3d& x) const { return m_constraints_at.rows() == x.rows() && m_constraints_at == x; }
   /// d² of every active contact at c.x, where they were built, and at c.x + dx when dx is
   /// given: computed once per build and move, and read by every pass over the contacts that
-  /// needs them (revise_hessian, relative_gap_change, min_active_distance).
+  /// needs them (value and add_gradient at c.x, revise_hessian, relative_gap_change,
+  /// min_active_distance).
   const std::vector<double>& squared_distances(const Configuration& c, const Eigen::MatrixX3d* dx = nullptr) const;
   /// squared_distances' results: of which build, the move (none at c.x itself), the values.
   struct SquaredDistances {
