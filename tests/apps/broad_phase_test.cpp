@@ -255,7 +255,7 @@ TEST(SweptCandidates, ServeASegmentTheirBoxesHoldOrWhoseMovedBodiesAreAlone) {
   const double proximity = 0.005, slack = 1e-4;  // d̂ = 1 cm
   BroadPhase finder(0.01);
   const Eigen::MatrixX3d x = model.surface(model.initial_q());
-  SweptCandidates kept(model, x, x, proximity, slack, finder);
+  SweptCandidates kept(model, x, x, proximity, slack, 0.0, finder);
   // Within the slack of every box: served with no body moved.
   const Eigen::MatrixX3d nudged = shifted(model, x, "b", Eigen::RowVector3d(0, 0.5 * slack, 0));
   const auto within = kept.extension(model, x, nudged);
@@ -284,7 +284,7 @@ TEST(SweptCandidates, ServeASegmentTheirBoxesHoldOrWhoseMovedBodiesAreAlone) {
   const PreparedScene slab =
       prepare_scene(load_scene_from_string(kSlab, STIFFSOFT_SOURCE_DIR, "slab.json", "slab"), "slab.json");
   const Eigen::MatrixX3d s = slab.model.surface(slab.model.initial_q());
-  const SweptCandidates slab_kept(slab.model, s, s, 0.01, 1e-4, finder);
+  const SweptCandidates slab_kept(slab.model, s, s, 0.01, 1e-4, 0.0, finder);
   EXPECT_FALSE(slab_kept.extension(slab.model, s, shifted(slab.model, s, "slab", Eigen::RowVector3d(0, 1, 0))).has_value());
 }
 
@@ -301,7 +301,7 @@ TEST(SweptCandidates, AServedSegmentsPairsAreAmongTheirs) {
   std::normal_distribution<double> normal(0.0, 1.0);
   Eigen::MatrixX3d x = model.surface(model.initial_q());
   std::optional<SweptCandidates> kept;
-  kept.emplace(model, x, x, proximity, slack, finder);
+  kept.emplace(model, x, x, proximity, slack, 0.0, finder);
   int served = 0, refused = 0;
   for (int call = 0; call < 80; ++call) {
     Eigen::MatrixX3d next = x;
@@ -319,7 +319,7 @@ TEST(SweptCandidates, AServedSegmentsPairsAreAmongTheirs) {
       EXPECT_TRUE(holds(kept->all(), broad_phase(model, x, next, proximity + slack))) << "call " << call;
     } else {
       ++refused;
-      kept.emplace(model, x, next, proximity, slack, finder);
+      kept.emplace(model, x, next, proximity, slack, 0.0, finder);
     }
     x = next;
   }
@@ -372,7 +372,7 @@ TEST(SweptCandidates, TheNearOnesGiveEveryCoveredConfigurationsContacts) {
     const Eigen::RowVector3d shift = 4e-3 * Eigen::RowVector3d(normal(rng), normal(rng), normal(rng)).normalized();
     for (int v = body.vertex_begin; v < body.vertex_end; ++v) x1.row(v) += shift;
   }
-  SweptCandidates kept(model, x0, x1, 0.5 * dhat, slack, finder);
+  SweptCandidates kept(model, x0, x1, 0.5 * dhat, slack, 0.0, finder);
   const Eigen::MatrixX3d first = covered_at_random(model, x0, x1, slack, rng);
   ASSERT_TRUE(kept.covers(first));
   const std::vector<double> reach = kept.reach_from(first);
@@ -393,6 +393,83 @@ TEST(SweptCandidates, TheNearOnesGiveEveryCoveredConfigurationsContacts) {
     EXPECT_TRUE(same_contacts(build_constraints(model, x, near, dhat), contacts)) << "trial " << trial;
   }
   EXPECT_GT(counts.size(), 3u);  // the configurations differ in their contacts
+}
+
+TEST(SweptCandidates, AnAdvancedSegmentHasANewBroadPhasesSetsForItsCcdAndIslands) {
+  // Random small moves of every body (0.9 of the slack) and, in turn, one or two bodies by
+  // 3–8 mm, mostly next to the others (d̂ = 1 cm): each segment extension() refuses or serves
+  // without a moved body is advanced, and
+  // its for_ccd() and tight() are a new SweptCandidates' of the segment, as sets; all() holds
+  // that one's, and the near candidates, completed from pending() at the segment's start, give
+  // the contacts all() gives at configurations anywhere the candidates serve.
+  const PreparedScene heap =
+      prepare_scene(load_scene_from_string(kHeap, STIFFSOFT_SOURCE_DIR, "heap.json", "heap"), "heap.json");
+  const Model& model = heap.model;
+  const double dhat = 0.01, proximity = 0.5 * dhat, slack = 4e-4, tight_slack = 2e-3;
+  BroadPhase finder(dhat), fresh_finder(dhat);
+  std::mt19937 rng(41);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Eigen::MatrixX3d x = model.surface(model.initial_q());
+  std::optional<SweptCandidates> swept;
+  int advanced = 0, with_pending = 0;
+  for (int call = 0; call < 80; ++call) {
+    // Every fifth segment from new candidates and with small moves only: all its pairs are the
+    // first broad phase's (which must hold tight()'s pairs of a segment of the slack).
+    const bool small = call % 5 == 0;
+    if (small) swept.emplace(model, x, x, proximity, slack, tight_slack, finder);
+    SweptCandidates& kept = *swept;
+    Eigen::MatrixX3d next = x;
+    for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+      const BodyModel& body = model.bodies[b];
+      if (body.dof < 0) continue;
+      const Eigen::RowVector3d shift(normal(rng), normal(rng), normal(rng));
+      const bool far = !small && (int(b) == 1 + call % 4 || (call % 3 == 0 && int(b) == 1 + (call + 2) % 4));
+      const double scale = far ? 3e-3 + 5e-3 * unit(rng) : 0.9 * slack;
+      for (int v = body.vertex_begin; v < body.vertex_end; ++v) next.row(v) += scale * shift.normalized();
+    }
+    // The near candidates sorted out at the segment's start before the move, as a line search does.
+    if (!kept.near() && !kept.pending() && kept.covers(x)) {
+      const std::vector<double> reach = kept.reach_from(x);
+      Candidates near;
+      const NearCandidates sort_out{reach, near};
+      build_constraints(model, x, kept.all(), dhat, &sort_out);
+      kept.keep_near(std::move(near), reach);
+    }
+    const auto alone = kept.extension(model, x, next);
+    if (alone && !alone->empty()) {  // the moved bodies alone: nothing to find
+      kept.extend(model, x, next, *alone);
+      x = next;
+      continue;
+    }
+    ASSERT_TRUE(kept.advance(model, x, next)) << "call " << call;
+    ++advanced;
+    const SweptCandidates fresh(model, x, next, proximity, slack, tight_slack, fresh_finder);
+    EXPECT_EQ(sorted_pairs(kept.for_ccd()).vertex_face, sorted_pairs(fresh.for_ccd()).vertex_face) << "call " << call;
+    EXPECT_EQ(sorted_pairs(kept.for_ccd()).edge_edge, sorted_pairs(fresh.for_ccd()).edge_edge) << "call " << call;
+    EXPECT_EQ(sorted_pairs(kept.tight()).vertex_face, sorted_pairs(fresh.tight()).vertex_face) << "call " << call;
+    EXPECT_EQ(sorted_pairs(kept.tight()).edge_edge, sorted_pairs(fresh.tight()).edge_edge) << "call " << call;
+    EXPECT_TRUE(holds(kept.all(), fresh.all())) << "call " << call;
+    EXPECT_TRUE(kept.covers(x) && kept.covers(next)) << "call " << call;
+    if (const Candidates* pending = kept.pending()) {
+      ++with_pending;
+      const std::vector<double> reach = kept.reach_from(x);
+      Candidates near;
+      const NearCandidates sort_out{reach, near};
+      build_constraints(model, x, *pending, dhat, &sort_out);
+      kept.add_near(near, reach);
+      ASSERT_TRUE(kept.near() != nullptr);
+      for (int trial = 0; trial < 5; ++trial) {
+        const Eigen::MatrixX3d at = covered_at_random(model, x, next, 0.0, rng);
+        ASSERT_TRUE(kept.covers(at));
+        EXPECT_TRUE(same_contacts(build_constraints(model, at, *kept.near(), dhat), build_constraints(model, at, kept.all(), dhat)))
+            << "call " << call << " trial " << trial;
+      }
+    }
+    x = next;
+  }
+  std::printf("    segments advanced: %d, of them with near candidates completed: %d\n", advanced, with_pending);
+  EXPECT_GT(with_pending, 20);
 }
 
 TEST(InOrderedChunks, GathersInItemOrderWhateverTheThreadCount) {

@@ -282,8 +282,8 @@ using Shrunk = std::array<std::vector<std::array<int, 2>>*, BroadPhase::kMostShr
 /// keep_overlapping() with `Levels` shrunk sets, a compile-time count: the loop over them
 /// unrolled and their counts in registers (a loop over a run-time count took half as long again).
 template <std::size_t Levels>
-void keep_overlapping_in(const std::vector<std::array<int, 2>>& pairs, const std::vector<Box>& a, const std::vector<Box>& b,
-                         std::vector<std::array<int, 2>>& out, const Shrunk& shrunk,
+void keep_overlapping_in(const std::array<int, 2>* pairs, std::size_t n, const std::vector<Box>& a,
+                         const std::vector<Box>& b, std::vector<std::array<int, 2>>& out, const Shrunk& shrunk,
                          const std::array<double, BroadPhase::kMostShrunk>& shrink) {
   // Overlap of the shrunk boxes, x.lo + shrink ≤ y.hi − shrink, tested as an overlap of the
   // grown ones no smaller than 2·shrink less 1e-9 of it: a superset by far less than the CCD's
@@ -292,8 +292,8 @@ void keep_overlapping_in(const std::vector<std::array<int, 2>>& pairs, const std
   for (std::size_t l = 0; l < Levels; ++l) gap[l] = 2 * shrink[l] * (1 - 1e-9);
   constexpr std::size_t kBlock = 256;
   std::array<int, 2> kept[kBlock], kept_shrunk[Levels + 1][kBlock];
-  for (std::size_t begin = 0; begin < pairs.size(); begin += kBlock) {
-    const std::size_t end = std::min(pairs.size(), begin + kBlock);
+  for (std::size_t begin = 0; begin < n; begin += kBlock) {
+    const std::size_t end = std::min(n, begin + kBlock);
     std::size_t count = 0;
     std::array<std::size_t, Levels + 1> shrunk_count{};
     for (std::size_t k = begin; k < end; ++k) {
@@ -317,19 +317,19 @@ void keep_overlapping_in(const std::vector<std::array<int, 2>>& pairs, const std
   }
 }
 
-/// Appends to `out` the pairs (i, j) of `pairs` whose boxes a[i] and b[j] overlap, in order,
+/// Appends to `out` the pairs (i, j) of pairs[0, n) whose boxes a[i] and b[j] overlap, in order,
 /// and to each of the first `levels` sets of `shrunk` those whose boxes still overlap shrunk by
 /// its `shrink` on every side. Most do in a resting pile, unpredictably: each pair is written
 /// and kept only when its boxes overlap, without a branch on it, into a block on the stack (not
 /// zero-filled, unlike a resized vector) that is then appended.
-void keep_overlapping(const std::vector<std::array<int, 2>>& pairs, const std::vector<Box>& a, const std::vector<Box>& b,
-                      std::vector<std::array<int, 2>>& out, const Shrunk& shrunk,
+void keep_overlapping(const std::array<int, 2>* pairs, std::size_t n, const std::vector<Box>& a,
+                      const std::vector<Box>& b, std::vector<std::array<int, 2>>& out, const Shrunk& shrunk,
                       const std::array<double, BroadPhase::kMostShrunk>& shrink, std::size_t levels) {
   static_assert(BroadPhase::kMostShrunk == 2, "one case per count below");
   switch (levels) {
-    case 0: keep_overlapping_in<0>(pairs, a, b, out, shrunk, shrink); break;
-    case 1: keep_overlapping_in<1>(pairs, a, b, out, shrunk, shrink); break;
-    default: keep_overlapping_in<2>(pairs, a, b, out, shrunk, shrink); break;
+    case 0: keep_overlapping_in<0>(pairs, n, a, b, out, shrunk, shrink); break;
+    case 1: keep_overlapping_in<1>(pairs, n, a, b, out, shrunk, shrink); break;
+    default: keep_overlapping_in<2>(pairs, n, a, b, out, shrunk, shrink); break;
   }
 }
 
@@ -346,6 +346,87 @@ Candidates broad_phase(const Model& model, const Eigen::MatrixX3d& x0, const Eig
       pairs.size(), 8, [&](std::size_t k, Candidates& out) { primitive_pairs(model, boxes, body_box, pairs[k][0], pairs[k][1], out); },
       [&](const Candidates& part) { all.append(part); });
   return all;
+}
+
+Candidates pairs_of_bodies(const Model& model, const Eigen::ArrayX3d& lo, const Eigen::ArrayX3d& hi,
+                           double inflation, const std::vector<int>& bodies) {
+  const CollisionMesh& mesh = model.mesh;
+  const int nb = int(model.bodies.size());
+  // Every vertex's box; the faces' and edges' only for the bodies a pair needs.
+  PrimitiveBoxes boxes;
+  boxes.vertex.resize(std::size_t(lo.rows()));
+  for (Eigen::Index v = 0; v < lo.rows(); ++v)
+    boxes.vertex[std::size_t(v)] = {lo.row(v).transpose() - inflation, hi.row(v).transpose() + inflation};
+  boxes.face.resize(std::size_t(mesh.F.rows()));
+  boxes.edge.resize(std::size_t(mesh.E.rows()));
+  const std::vector<Box> body_box = body_boxes(model, boxes.vertex);
+  std::vector<int> place(std::size_t(nb), -1);  // in `bodies`
+  for (std::size_t i = 0; i < bodies.size(); ++i) place[std::size_t(bodies[i])] = int(i);
+  std::vector<char> spanned(std::size_t(nb), 0);
+  const auto span_body = [&](int b) {
+    if (spanned[std::size_t(b)]) return;
+    const BodyModel& body = model.bodies[std::size_t(b)];
+    span(mesh.F, boxes.vertex, body.face_begin, body.face_end, boxes.face);
+    span(mesh.E, boxes.vertex, body.edge_begin, body.edge_end, boxes.edge);
+    spanned[std::size_t(b)] = 1;
+  };
+  std::vector<std::array<int, 2>> pairs;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const int a = bodies[i];
+    if (model.bodies[std::size_t(a)].self_contact())
+      throw std::invalid_argument("pairs_of_bodies: body " + model.bodies[std::size_t(a)].name +
+                                  " has self-contact");
+    for (int b = 0; b < nb; ++b) {
+      // Two of `bodies` once, with the first of them.
+      if (b == a || (place[std::size_t(b)] >= 0 && place[std::size_t(b)] < int(i))) continue;
+      if (!body_box[std::size_t(a)].overlaps(body_box[std::size_t(b)])) continue;
+      span_body(a);
+      span_body(b);
+      pairs.push_back({std::min(a, b), std::max(a, b)});
+    }
+  }
+  Candidates out;
+  in_ordered_chunks<Candidates>(
+      pairs.size(), 8,
+      [&](std::size_t k, Candidates& part) {
+        primitive_pairs(model, boxes, body_box, pairs[k][0], pairs[k][1], part);
+      },
+      [&](const Candidates& part) { out.append(part); });
+  return out;
+}
+
+void keep_shrunk(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, double inflation,
+                 const Candidates& pairs, const std::vector<ShrunkCandidates>& shrunk) {
+  if (shrunk.empty() || shrunk.size() > BroadPhase::kMostShrunk)
+    throw std::invalid_argument("keep_shrunk: 1 to " + std::to_string(BroadPhase::kMostShrunk) +
+                                " shrunk candidate sets, got " + std::to_string(shrunk.size()));
+  const PrimitiveBoxes now = primitive_boxes(model.mesh, x0, x1, inflation);
+  std::array<double, BroadPhase::kMostShrunk> shrink{};
+  for (std::size_t l = 0; l < shrunk.size(); ++l) shrink[l] = shrunk[l].shrink;
+  // By chunks of pairs in parallel, gathered in order (the grown boxes' pairs are not asked for).
+  using Pairs = std::vector<std::array<int, 2>>;
+  constexpr std::size_t kChunk = 4096;
+  struct Found {
+    Pairs grown;
+    std::array<Pairs, BroadPhase::kMostShrunk> shrunk;
+  };
+  const auto keep = [&](const Pairs& list, const std::vector<Box>& a, const std::vector<Box>& b,
+                        Pairs Candidates::*set) {
+    std::vector<Found> found((list.size() + kChunk - 1) / kChunk);
+    tbb::parallel_for(std::size_t(0), found.size(), [&](std::size_t c) {
+      const std::size_t begin = c * kChunk, end = std::min(list.size(), begin + kChunk);
+      Found& f = found[c];
+      keep_overlapping(list.data() + begin, end - begin, a, b, f.grown, {&f.shrunk[0], &f.shrunk[1]}, shrink,
+                       shrunk.size());
+    });
+    for (std::size_t l = 0; l < shrunk.size(); ++l) {
+      Pairs& out = shrunk[l].out->*set;
+      out.clear();
+      for (const Found& f : found) out.insert(out.end(), f.shrunk[l].begin(), f.shrunk[l].end());
+    }
+  };
+  keep(pairs.vertex_face, now.vertex, now.face, &Candidates::vertex_face);
+  keep(pairs.edge_edge, now.edge, now.edge, &Candidates::edge_edge);
 }
 
 Candidates BroadPhase::find(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
@@ -417,9 +498,10 @@ Candidates BroadPhase::find(const Model& model, const Eigen::MatrixX3d& x0, cons
           primitive_pairs(model, reference, m_body, a, b, p.pairs);
           refreshed[k] = 1;
         }
-        keep_overlapping(p.pairs.vertex_face, now.vertex, now.face, out.grown.vertex_face,
+        const Candidates& c = p.pairs;
+        keep_overlapping(c.vertex_face.data(), c.vertex_face.size(), now.vertex, now.face, out.grown.vertex_face,
                          {&out.shrunk[0].vertex_face, &out.shrunk[1].vertex_face}, shrink, shrunk.size());
-        keep_overlapping(p.pairs.edge_edge, now.edge, now.edge, out.grown.edge_edge,
+        keep_overlapping(c.edge_edge.data(), c.edge_edge.size(), now.edge, now.edge, out.grown.edge_edge,
                          {&out.shrunk[0].edge_edge, &out.shrunk[1].edge_edge}, shrink, shrunk.size());
       },
       [&](const Found& part) {

@@ -52,6 +52,19 @@ struct ShrunkCandidates {
   Candidates* out;  ///< replaced by those pairs
 };
 
+/// Primitive pairs, as broad_phase() would consider them, between each body of `bodies` (without
+/// self-contact) and every other body, a pair of two of them once, whose boxes overlap: a vertex's
+/// box is its row of lo and hi (|V|×3, m) grown by `inflation` (m). In the order of `bodies`,
+/// then of the other body.
+Candidates pairs_of_bodies(const Model& model, const Eigen::ArrayX3d& lo, const Eigen::ArrayX3d& hi,
+                           double inflation, const std::vector<int>& bodies);
+
+/// Fills each of `shrunk` with the pairs of `pairs` that BroadPhase::find(model, x0, x1,
+/// inflation, shrunk) puts there (the same boxes and test), in the order of `pairs`: where
+/// `pairs` holds every pair of those sets, exactly find()'s sets.
+void keep_shrunk(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, double inflation,
+                 const Candidates& pairs, const std::vector<ShrunkCandidates>& shrunk);
+
 /// The broad phase of a run: the same candidates as broad_phase() at every call, found from
 /// memory where the bodies barely moved (a Verlet list per body pair). Each body keeps
 /// reference boxes, its vertices' boxes grown by `margin` when it last moved out of them; a

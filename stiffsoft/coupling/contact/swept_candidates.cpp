@@ -14,21 +14,30 @@ namespace {
 /// bodies that move that much are rarely all alone, and a pile in motion pays a Newton
 /// iteration beside which a new broad phase is small.
 constexpr std::size_t kMostMovedBodies = 8;
+/// advance() finds the pairs of at most this share of the bodies (and at least kMostMovedBodies)
+/// again; beyond it a new broad phase is no dearer.
+constexpr std::size_t kAdvancedShare = 8;
 }  // namespace
 
 SweptCandidates::SweptCandidates(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
-                                 double proximity, double slack, BroadPhase& finder, std::optional<double> tight_slack)
+                                 double proximity, double slack, double tight_slack, BroadPhase& finder)
     : m_lo(x0.array().min(x1.array())),
       m_hi(x0.array().max(x1.array())),
       m_slack(slack),
-      m_proximity(proximity) {
-  std::vector<ShrunkCandidates> shrunk{{proximity + slack, &m_ccd}};
-  if (tight_slack) {
-    if (!(*tight_slack >= 0 && *tight_slack <= slack))
-      throw std::invalid_argument("SweptCandidates: tight_slack must be in [0, slack], got " + std::to_string(*tight_slack));
-    shrunk.push_back({slack - *tight_slack, &m_tight});
-  }
-  m_all = finder.find(model, x0, x1, proximity + slack, shrunk, &m_region);
+      m_inflation(proximity + slack + tight_slack) {
+  if (!(tight_slack >= 0 && slack >= 0))
+    throw std::invalid_argument("SweptCandidates: slack and tight_slack must be ≥ 0, got " + std::to_string(slack) +
+                                " and " + std::to_string(tight_slack));
+  m_all = finder.find(model, x0, x1, m_inflation, {{m_inflation, &m_ccd}, {slack, &m_tight}}, &m_region);
+}
+
+bool SweptCandidates::inside(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, Eigen::Index first,
+                             Eigen::Index count) const {
+  const auto in = [&](const Eigen::MatrixX3d& x) {
+    return (x.middleRows(first, count).array() >= m_lo.middleRows(first, count) - m_slack).all() &&
+           (x.middleRows(first, count).array() <= m_hi.middleRows(first, count) + m_slack).all();
+  };
+  return in(x0) && in(x1);
 }
 
 bool SweptCandidates::covers(const Eigen::MatrixX3d& x) const {
@@ -47,13 +56,6 @@ bool SweptCandidates::covers(const Eigen::MatrixX3d& x) const {
 std::optional<std::vector<int>> SweptCandidates::extension(const Model& model, const Eigen::MatrixX3d& x0,
                                                            const Eigen::MatrixX3d& x1) const {
   if (x0.rows() != m_lo.rows() || x1.rows() != m_lo.rows()) return std::nullopt;
-  const auto inside = [&](Eigen::Index first, Eigen::Index count) {
-    const auto in = [&](const Eigen::MatrixX3d& x) {
-      return (x.middleRows(first, count).array() >= m_lo.middleRows(first, count) - m_slack).all() &&
-             (x.middleRows(first, count).array() <= m_hi.middleRows(first, count) + m_slack).all();
-    };
-    return in(x0) && in(x1);
-  };
   // Vertices within the slack of their bodies' regions come closer than 2·proximity only where
   // the regions, grown by proximity + slack, meet. A moved body's region is its box on the
   // segment; it must meet no other body's, moved or not.
@@ -67,7 +69,7 @@ std::optional<std::vector<int>> SweptCandidates::extension(const Model& model, c
   std::size_t first_vertices_out = 0;
   for (int b = 0; b < int(model.bodies.size()); ++b) {
     const BodyModel& body = model.bodies[std::size_t(b)];
-    if (body.vertex_end == body.vertex_begin || inside(body.vertex_begin, 1)) continue;
+    if (body.vertex_end == body.vertex_begin || inside(x0, x1, body.vertex_begin, 1)) continue;
     if (++first_vertices_out > kMostMovedBodies || body.self_contact() ||
         meets_another(b, grown_segment_box(body, x0, x1), m_region))
       return std::nullopt;
@@ -76,7 +78,8 @@ std::optional<std::vector<int>> SweptCandidates::extension(const Model& model, c
   std::vector<AxisBox> region = m_region;
   for (int b = 0; b < int(model.bodies.size()); ++b) {
     const BodyModel& body = model.bodies[std::size_t(b)];
-    if (body.vertex_end == body.vertex_begin || inside(body.vertex_begin, body.vertex_end - body.vertex_begin)) continue;
+    const Eigen::Index count = body.vertex_end - body.vertex_begin;
+    if (count == 0 || inside(x0, x1, body.vertex_begin, count)) continue;
     if (moved.size() == kMostMovedBodies || body.self_contact()) return std::nullopt;
     moved.push_back(b);
     region[std::size_t(b)] = grown_segment_box(body, x0, x1);
@@ -98,12 +101,80 @@ std::vector<double> SweptCandidates::reach_from(const Eigen::MatrixX3d& x) const
 
 void SweptCandidates::keep_near(Candidates near, const std::vector<double>& reach) {
   m_near = std::move(near);
+  m_pending.reset();
   m_near_reach = reach.empty() ? 0.0 : *std::max_element(reach.begin(), reach.end());
+}
+
+void SweptCandidates::add_near(const Candidates& near, const std::vector<double>& reach) {
+  if (!m_near || !m_pending) throw std::logic_error("SweptCandidates::add_near: no pairs pending");
+  m_near->append(near);
+  m_pending.reset();
+  // Each near candidate was sorted out with reaches no larger than this (the reaches bound how
+  // far its vertices go within their boxes, from wherever they were sorted out).
+  if (!reach.empty()) m_near_reach = std::max(m_near_reach, *std::max_element(reach.begin(), reach.end()));
 }
 
 void SweptCandidates::extend(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
                              const std::vector<int>& moved) {
-  if (!moved.empty()) m_near.reset();  // its reaches were those of the moved bodies' old boxes
+  if (!moved.empty()) {  // its reaches were those of the moved bodies' old boxes
+    m_near.reset();
+    m_pending.reset();
+  }
+  move_boxes(model, x0, x1, moved);
+}
+
+bool SweptCandidates::advance(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1) {
+  if (x0.rows() != m_lo.rows() || x1.rows() != m_lo.rows()) return false;
+  const std::size_t most = std::max(kMostMovedBodies, model.bodies.size() / kAdvancedShare);
+  std::vector<int> moved;
+  for (int b = 0; b < int(model.bodies.size()); ++b) {
+    const BodyModel& body = model.bodies[std::size_t(b)];
+    const Eigen::Index count = body.vertex_end - body.vertex_begin;
+    if (count == 0 || inside(x0, x1, body.vertex_begin, count)) continue;
+    if (moved.size() == most || body.self_contact()) return false;
+    moved.push_back(b);
+  }
+  // The other bodies' vertices lie within the slack of their boxes, so a pair of theirs whose
+  // boxes on the segment overlap grown by d̂/2 + tight_slack (tight()) or not grown (for_ccd())
+  // has its kept boxes overlap grown by that plus the slack: it is one of all()'s. The moved
+  // bodies' pairs, found at their new boxes and the others' kept ones, hold theirs likewise.
+  move_boxes(model, x0, x1, moved);
+  if (!moved.empty()) {
+    const CollisionMesh& mesh = model.mesh;
+    std::vector<char> is_moved(model.bodies.size(), 0);
+    for (int b : moved) is_moved[std::size_t(b)] = 1;
+    const auto moved_body = [&](const std::vector<int>& body_of, int primitive) {
+      return is_moved[std::size_t(body_of[std::size_t(primitive)])] != 0;
+    };
+    const auto of_moved_vertex_face = [&](const std::array<int, 2>& p) {
+      return moved_body(mesh.vertex_body, p[0]) || moved_body(mesh.face_body, p[1]);
+    };
+    const auto of_moved_edge_edge = [&](const std::array<int, 2>& p) {
+      return moved_body(mesh.edge_body, p[0]) || moved_body(mesh.edge_body, p[1]);
+    };
+    const auto drop_moved = [&](Candidates& c) {  // the others in their order
+      c.vertex_face.erase(std::remove_if(c.vertex_face.begin(), c.vertex_face.end(), of_moved_vertex_face),
+                          c.vertex_face.end());
+      c.edge_edge.erase(std::remove_if(c.edge_edge.begin(), c.edge_edge.end(), of_moved_edge_edge),
+                        c.edge_edge.end());
+    };
+    Candidates found = pairs_of_bodies(model, m_lo, m_hi, m_inflation, moved);
+    drop_moved(m_all);
+    m_all.append(found);
+    // Without near candidates yet, the first build sorts out all() anyway.
+    if (m_near) {
+      drop_moved(*m_near);
+      if (m_pending) drop_moved(*m_pending);
+      else m_pending.emplace();
+      m_pending->append(found);
+    }
+  }
+  keep_shrunk(model, x0, x1, m_inflation, m_all, {{m_inflation, &m_ccd}, {m_slack, &m_tight}});
+  return true;
+}
+
+void SweptCandidates::move_boxes(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
+                                 const std::vector<int>& moved) {
   for (int b : moved) {
     const BodyModel& body = model.bodies[std::size_t(b)];
     const Eigen::Index first = body.vertex_begin, count = body.vertex_end - body.vertex_begin;
@@ -116,7 +187,7 @@ void SweptCandidates::extend(const Model& model, const Eigen::MatrixX3d& x0, con
 AxisBox SweptCandidates::grown_segment_box(const BodyModel& body, const Eigen::MatrixX3d& x0,
                                            const Eigen::MatrixX3d& x1) const {
   const Eigen::Index first = body.vertex_begin, count = body.vertex_end - body.vertex_begin;
-  const double growth = m_proximity + m_slack;
+  const double growth = m_inflation;
   return AxisBox(x0.middleRows(first, count).array().min(x1.middleRows(first, count).array()).colwise().minCoeff().transpose() - growth,
                  x0.middleRows(first, count).array().max(x1.middleRows(first, count).array()).colwise().maxCoeff().transpose() + growth);
 }

@@ -5,7 +5,8 @@
 /// trials and the CCD bound of the same direction reuse them (IPC's use of the CCD broad
 /// phase). A configuration that strays from the segment falls back to a fresh broad phase.
 /// A later segment that keeps every body within the slack of its boxes, or moves only bodies
-/// that stay alone, is served by the same candidates (extension(); a resting pile's moves).
+/// that stay alone, is served by the same candidates (extension(); a resting pile's moves); one
+/// that moves a few bodies next to others, by finding their pairs alone (advance()).
 
 #include <Eigen/Core>
 #include <optional>
@@ -19,13 +20,13 @@ namespace stiffsoft {
 /// Candidates of one Newton direction, with the region they are valid in.
 class SweptCandidates {
  public:
-  /// Broad phase of the segment x0 → x1 (|V|×3, m), every box grown by proximity + slack (m):
-  /// pairs closer than 2·proximity at any configuration whose vertices lie within `slack`
-  /// of their own swept boxes are candidates.
-  /// `finder` is the run's broad phase. With `tight_slack` (m, at most `slack`), tight() holds
-  /// the candidates whose boxes overlap grown by proximity + tight_slack only.
+  /// Broad phase of the segment x0 → x1 (|V|×3, m), every box grown by proximity + slack +
+  /// tight_slack (m): pairs closer than 2·proximity at any configuration whose vertices lie
+  /// within `slack` of their own swept boxes are candidates. tight() holds the candidates whose
+  /// boxes overlap grown by proximity + tight_slack only (the growth beyond the slack lets
+  /// advance() find them among all()). `finder` is the run's broad phase.
   SweptCandidates(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, double proximity,
-                  double slack, BroadPhase& finder, std::optional<double> tight_slack = std::nullopt);
+                  double slack, double tight_slack, BroadPhase& finder);
   /// True when every vertex of x (|V|×3, m) lies within the slack of its swept box, so the
   /// candidates hold every pair of x closer than 2·proximity.
   bool covers(const Eigen::MatrixX3d& x) const;
@@ -42,6 +43,14 @@ class SweptCandidates {
   /// the first segment's: an extended segment needs no CCD only when no pair of all() can
   /// close its gap on it (ClearMotion), for which the caller answers.
   void extend(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, const std::vector<int>& moved);
+  /// Serves the segment x0 → x1 (|V|×3, m) where at most a few bodies, none with self-contact,
+  /// leave their vertices' boxes: their boxes become those of the segment and their pairs are
+  /// found again (pairs_of_bodies), the other bodies keep theirs, and for_ccd() and tight()
+  /// become this segment's own, kept from all() by a fresh broad phase's box test: the sets a
+  /// new SweptCandidates of the segment would hold. The near candidates among the other bodies
+  /// stay; the moved bodies' new pairs wait in pending() to be sorted out. False, changing
+  /// nothing, where more bodies moved (a new broad phase then costs no more).
+  bool advance(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1);
   /// Every candidate (a superset of the proximity pairs of a covered configuration).
   const Candidates& all() const { return m_all; }
   /// Per surface vertex, how far from x (|V|×3, m, covered) it can be at any covered
@@ -49,8 +58,13 @@ class SweptCandidates {
   std::vector<double> reach_from(const Eigen::MatrixX3d& x) const;
   /// The candidates of all() that can come within d̂ at a covered configuration, once
   /// keep_near() gave them (build_constraints over reach_from(); a resting pile's few percent);
-  /// null before, and after extend() moved a body.
-  const Candidates* near() const { return m_near ? &*m_near : nullptr; }
+  /// null before, after extend() moved a body, and while pending() holds pairs.
+  const Candidates* near() const { return m_near && !m_pending ? &*m_near : nullptr; }
+  /// The pairs advance() found for its moved bodies, where the near candidates of the others
+  /// are kept: add_near() completes near() with those of them that are near; null otherwise.
+  const Candidates* pending() const { return m_pending ? &*m_pending : nullptr; }
+  /// Adds the near ones of pending(), sorted out at a covered configuration with these reaches.
+  void add_near(const Candidates& near, const std::vector<double>& reach);
   /// The largest of the reaches near() was sorted out with (m).
   double near_reach() const { return m_near_reach; }
   /// Keeps the near candidates found at a covered configuration with these reaches (NearCandidates).
@@ -63,20 +77,25 @@ class SweptCandidates {
   const Candidates& tight() const { return m_tight; }
 
  private:
-  /// The box of the body's (non-empty) vertices on the segment x0 → x1, grown by proximity + slack.
+  /// The box of the body's (non-empty) vertices on the segment x0 → x1, grown as all()'s boxes.
   AxisBox grown_segment_box(const BodyModel& body, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1) const;
+  /// Whether the rows [first, first + count) of x0 and x1 lie within the slack of their boxes.
+  bool inside(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, Eigen::Index first, Eigen::Index count) const;
+  /// Makes the moved bodies' vertices' boxes and regions those of the segment x0 → x1.
+  void move_boxes(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, const std::vector<int>& moved);
 
   /// Per-vertex swept box (no growth), for covers(): stored as x is, column by column.
   Eigen::ArrayX3d m_lo, m_hi;
-  /// Per body, the box of its vertices' boxes grown by proximity + slack (the broad phase's).
+  /// Per body, the box of its vertices' boxes grown by m_inflation (the broad phase's).
   std::vector<AxisBox> m_region;
   double m_slack;              ///< allowed distance of a covered configuration from the swept boxes (m)
-  double m_proximity;          ///< half the distance below which pairs are candidates (m)
+  double m_inflation;          ///< growth of all()'s boxes: proximity + slack + tight_slack (m)
   Candidates m_ccd;            ///< for_ccd(), filled by the broad phase that fills m_all
   Candidates m_tight;          ///< tight(), likewise
   Candidates m_all;
-  std::optional<Candidates> m_near;  ///< near()
-  double m_near_reach = 0;           ///< near_reach()
+  std::optional<Candidates> m_near;     ///< near() (without pending() while it holds pairs)
+  std::optional<Candidates> m_pending;  ///< pending()
+  double m_near_reach = 0;              ///< near_reach()
 };
 
 }  // namespace stiffsoft

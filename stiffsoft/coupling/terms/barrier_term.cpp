@@ -96,10 +96,23 @@ void BarrierTerm::update(const Configuration& c) {
   m_build = ++m_builds;
 }
 
+void BarrierTerm::sweep(const Configuration& c, const Eigen::MatrixX3d& x1) const {
+  if (m_swept && m_swept->advance(m_model, c.x, x1)) return;
+  m_swept.emplace(m_model, c.x, x1, 0.5 * m_settings.dhat, kSweptSlack * m_settings.dhat, kIslandSlack * m_settings.dhat,
+                  m_broad_phase);
+}
+
 std::vector<ContactConstraint> BarrierTerm::covered_constraints(const Eigen::MatrixX3d& x) const {
   // The first configuration the candidates serve sorts out those that can come within d̂
   // anywhere they serve; later ones (the line search's trials, the next step's start at rest)
-  // look at those alone.
+  // look at those alone. After advance() only the moved bodies' new pairs are sorted out.
+  if (const Candidates* pending = m_swept->pending()) {
+    const std::vector<double> reach = m_swept->reach_from(x);
+    Candidates near;
+    const NearCandidates sort_out{reach, near};
+    build_constraints(m_model, x, *pending, m_settings.dhat, &sort_out);
+    m_swept->add_near(near, reach);
+  }
   if (const Candidates* near = m_swept->near()) return build_constraints(m_model, x, *near, m_settings.dhat);
   const std::vector<double> reach = m_swept->reach_from(x);
   Candidates near;
@@ -202,7 +215,7 @@ double BarrierTerm::max_step(const Configuration& c, const Eigen::VectorXd&, con
   m_cut.clear();
   if (keeps_clear(c, x1)) return 1.0;
   // One broad phase for the CCD and every line-search trial of this direction (update()).
-  m_swept.emplace(m_model, c.x, x1, 0.5 * m_settings.dhat, kSweptSlack * m_settings.dhat, m_broad_phase);
+  sweep(c, x1);
   std::vector<double> bound{1.0};
   ccd_bounds(c.x, x1, nullptr, bound);
   return bound[0];
@@ -236,8 +249,7 @@ void BarrierTerm::join_coupled_blocks(const Configuration& c, const Eigen::Matri
     join_pairs(*m_swept->near());
     return;
   }
-  m_swept.emplace(m_model, c.x, x1, 0.5 * m_settings.dhat, kSweptSlack * m_settings.dhat, m_broad_phase,
-                  kIslandSlack * m_settings.dhat);
+  sweep(c, x1);
   join_pairs(m_swept->tight());
 }
 

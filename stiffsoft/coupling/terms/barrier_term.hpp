@@ -164,6 +164,9 @@ class BarrierTerm final : public EnergyTerm {
   /// at c.x): then every CCD query of the move would return 1, so neither a broad phase nor a
   /// query is needed (the step's first move in a resting pile). Extends them to the move.
   bool keeps_clear(const Configuration& c, const Eigen::MatrixX3d& x1) const;
+  /// Makes m_swept the candidates of the move c.x → x1: the kept ones advanced to it where they
+  /// can be (SweptCandidates::advance), else a new swept broad phase.
+  void sweep(const Configuration& c, const Eigen::MatrixX3d& x1) const;
   /// Candidates of the last direction max_step bounded, reused by update() on that segment.
   mutable std::optional<SweptCandidates> m_swept;
   /// Whether join_coupled_blocks' move was one keeps_clear() kept, for max_step_per_island.
