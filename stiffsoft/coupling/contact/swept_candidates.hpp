@@ -40,7 +40,7 @@ class SweptCandidates {
                                             const Eigen::MatrixX3d& x1) const;
   /// Serves the segment x0 → x1 that extension() accepted, which returned `moved`: their
   /// vertices' boxes become those of the segment, so covers() holds on it. for_ccd() stays
-  /// the first segment's: an extended segment needs no CCD only when no pair of all() can
+  /// the last swept or advanced segment's: an extended segment needs no CCD only when no pair of all() can
   /// close its gap on it (ClearMotion), for which the caller answers.
   void extend(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, const std::vector<int>& moved);
   /// Serves the segment x0 → x1 (|V|×3, m) where at most a few bodies, none with self-contact,
@@ -69,11 +69,12 @@ class SweptCandidates {
   double near_reach() const { return m_near_reach; }
   /// Keeps the near candidates found at a covered configuration with these reaches (NearCandidates).
   void keep_near(Candidates near, const std::vector<double>& reach);
-  /// The candidates whose swept boxes overlap without any growth, for the CCD of the segment:
-  /// what broad_phase(model, x0, x1, 0) finds, found in the same pass as all() (BroadPhase::find).
+  /// The candidates whose swept boxes overlap without any growth, for the CCD of the segment (the
+  /// first, or the last advanced): what broad_phase(model, x0, x1, 0) finds, found in the same
+  /// pass as all() (BroadPhase::find) or among all() by advance().
   const Candidates& for_ccd() const { return m_ccd; }
-  /// The candidates whose swept boxes on the first segment overlap grown by proximity plus the
-  /// constructor's `tight_slack` (none without one), found in the same pass as all().
+  /// The candidates whose swept boxes on the segment (the first, or the last advanced) overlap
+  /// grown by proximity plus the constructor's `tight_slack`, found as for_ccd() is.
   const Candidates& tight() const { return m_tight; }
 
  private:
@@ -90,7 +91,7 @@ class SweptCandidates {
   std::vector<AxisBox> m_region;
   double m_slack;              ///< allowed distance of a covered configuration from the swept boxes (m)
   double m_inflation;          ///< growth of all()'s boxes: proximity + slack + tight_slack (m)
-  Candidates m_ccd;            ///< for_ccd(), filled by the broad phase that fills m_all
+  Candidates m_ccd;            ///< for_ccd(), filled by the broad phase that fills m_all, or by advance()
   Candidates m_tight;          ///< tight(), likewise
   Candidates m_all;
   std::optional<Candidates> m_near;     ///< near() (without pending() while it holds pairs)
