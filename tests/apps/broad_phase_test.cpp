@@ -434,7 +434,7 @@ TEST(SweptCandidates, AnAdvancedSegmentHasANewBroadPhasesSetsForItsCcdAndIslands
       Candidates near;
       const NearCandidates sort_out{reach, near};
       build_constraints(model, x, kept.all(), dhat, &sort_out);
-      kept.keep_near(std::move(near), reach);
+      kept.keep_near(model, std::move(near), reach);
     }
     const auto alone = kept.extension(model, x, next);
     if (alone && !alone->empty()) {  // the moved bodies alone: nothing to find
@@ -457,7 +457,7 @@ TEST(SweptCandidates, AnAdvancedSegmentHasANewBroadPhasesSetsForItsCcdAndIslands
       Candidates near;
       const NearCandidates sort_out{reach, near};
       build_constraints(model, x, *pending, dhat, &sort_out);
-      kept.add_near(near, reach);
+      kept.add_near(model, near, reach);
       ASSERT_TRUE(kept.near() != nullptr);
       for (int trial = 0; trial < 5; ++trial) {
         const Eigen::MatrixX3d at = covered_at_random(model, x, next, 0.0, rng);

@@ -99,19 +99,30 @@ std::vector<double> SweptCandidates::reach_from(const Eigen::MatrixX3d& x) const
   return reach;
 }
 
-void SweptCandidates::keep_near(Candidates near, const std::vector<double>& reach) {
+void SweptCandidates::keep_near(const Model& model, Candidates near, const std::vector<double>& reach) {
   m_near = std::move(near);
   m_pending.reset();
-  m_near_reach = reach.empty() ? 0.0 : *std::max_element(reach.begin(), reach.end());
+  m_body_reach.assign(model.bodies.size(), 0.0);
+  for (std::size_t v = 0; v < reach.size(); ++v) {
+    double& r = m_body_reach[std::size_t(model.mesh.vertex_body[v])];
+    r = std::max(r, reach[v]);
+  }
 }
 
-void SweptCandidates::add_near(const Candidates& near, const std::vector<double>& reach) {
+void SweptCandidates::add_near(const Model& model, const Candidates& near, const std::vector<double>& reach) {
   if (!m_near || !m_pending) throw std::logic_error("SweptCandidates::add_near: no pairs pending");
   m_near->append(near);
+  // The pending pairs' vertices were sorted out with these reaches: their bodies' bound them too.
+  const CollisionMesh& mesh = model.mesh;
+  const auto bound = [&](int v) {
+    double& r = m_body_reach[std::size_t(mesh.vertex_body[std::size_t(v)])];
+    r = std::max(r, reach[std::size_t(v)]);
+  };
+  for (const auto& [v, f] : m_pending->vertex_face)
+    for (int u : {v, mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)}) bound(u);
+  for (const auto& [ea, eb] : m_pending->edge_edge)
+    for (int u : {mesh.E(ea, 0), mesh.E(ea, 1), mesh.E(eb, 0), mesh.E(eb, 1)}) bound(u);
   m_pending.reset();
-  // Each near candidate was sorted out with reaches no larger than this (the reaches bound how
-  // far its vertices go within their boxes, from wherever they were sorted out).
-  if (!reach.empty()) m_near_reach = std::max(m_near_reach, *std::max_element(reach.begin(), reach.end()));
 }
 
 void SweptCandidates::extend(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,

@@ -63,12 +63,14 @@ class SweptCandidates {
   /// The pairs advance() found for its moved bodies, where the near candidates of the others
   /// are kept: add_near() completes near() with those of them that are near; null otherwise.
   const Candidates* pending() const { return m_pending ? &*m_pending : nullptr; }
-  /// Adds the near ones of pending(), sorted out at a covered configuration with these reaches.
-  void add_near(const Candidates& near, const std::vector<double>& reach);
-  /// The largest of the reaches near() was sorted out with (m).
-  double near_reach() const { return m_near_reach; }
+  /// Adds the near ones of pending(), sorted out at a covered configuration with these reaches
+  /// (one per surface vertex).
+  void add_near(const Model& model, const Candidates& near, const std::vector<double>& reach);
+  /// Per body, the largest reach its vertices' pairs were sorted out with for near() (m): how
+  /// far its vertices go within their boxes from where they were sorted out.
+  const std::vector<double>& body_reach() const { return m_body_reach; }
   /// Keeps the near candidates found at a covered configuration with these reaches (NearCandidates).
-  void keep_near(Candidates near, const std::vector<double>& reach);
+  void keep_near(const Model& model, Candidates near, const std::vector<double>& reach);
   /// The candidates whose swept boxes overlap without any growth, for the CCD of the segment (the
   /// first, or the last advanced): what broad_phase(model, x0, x1, 0) finds, found in the same
   /// pass as all() (BroadPhase::find) or among all() by advance().
@@ -96,7 +98,7 @@ class SweptCandidates {
   Candidates m_all;
   std::optional<Candidates> m_near;     ///< near() (without pending() while it holds pairs)
   std::optional<Candidates> m_pending;  ///< pending()
-  double m_near_reach = 0;              ///< near_reach()
+  std::vector<double> m_body_reach;     ///< body_reach()
 };
 
 }  // namespace stiffsoft

@@ -111,14 +111,14 @@ std::vector<ContactConstraint> BarrierTerm::covered_constraints(const Eigen::Mat
     Candidates near;
     const NearCandidates sort_out{reach, near};
     build_constraints(m_model, x, *pending, m_settings.dhat, &sort_out);
-    m_swept->add_near(near, reach);
+    m_swept->add_near(m_model, near, reach);
   }
   if (const Candidates* near = m_swept->near()) return build_constraints(m_model, x, *near, m_settings.dhat);
   const std::vector<double> reach = m_swept->reach_from(x);
   Candidates near;
   const NearCandidates sort_out{reach, near};
   std::vector<ContactConstraint> out = build_constraints(m_model, x, m_swept->all(), m_settings.dhat, &sort_out);
-  m_swept->keep_near(std::move(near), reach);
+  m_swept->keep_near(m_model, std::move(near), reach);
   return out;
 }
 
@@ -287,13 +287,12 @@ bool BarrierTerm::keeps_clear(const Configuration& c, const Eigen::MatrixX3d& x1
   const ccd::CcdSettings ccd_settings{};  // the queries' own
   const ClearMotion clear(m_constraints, c.x, x1, m_settings.dhat, ccd_settings);
   // Where no body left its boxes, a pair that is not near stays at least d̂ apart on the move,
-  // and its gap d changes by at most 4 R, R the largest reach. ACCD returns less than t_max only
-  // once d − ξ falls below s (d₀ − ξ), which needs d₀ − ξ > (d̂ − ξ) / s and then a change of
-  // more than (1 − s)(d̂ − ξ) / s (9 d̂ with the defaults): with R well below that, such pairs
-  // would return t_max and need no test.
+  // and its gap d changes by at most 4 R, R the larger reach of its two bodies (body_reach).
+  // ACCD returns less than t_max only once d − ξ falls below s (d₀ − ξ), which needs d₀ − ξ >
+  // (d̂ − ξ) / s and then a change of more than (1 − s)(d̂ − ξ) / s (9 d̂ with the defaults): with
+  // R well below that, such pairs would return t_max and need no test. So the near pairs are
+  // tested, and of the others only those of a body that reaches farther.
   const double no_cut = (1 - ccd_settings.tolerance) * (m_settings.dhat - ccd_settings.min_distance) / ccd_settings.tolerance;
-  const bool near_suffice = moved->empty() && m_swept->near() && 8 * m_swept->near_reach() <= no_cut;
-  const Candidates& all = near_suffice ? *m_swept->near() : m_swept->all();
   const CollisionMesh& mesh = m_model.mesh;
   const auto vertex_face_clear = [&](const std::array<int, 2>& k) {
     return clear.is_clear({k[0], mesh.F(k[1], 0), mesh.F(k[1], 1), mesh.F(k[1], 2)});
@@ -301,9 +300,28 @@ bool BarrierTerm::keeps_clear(const Configuration& c, const Eigen::MatrixX3d& x1
   const auto edge_edge_clear = [&](const std::array<int, 2>& k) {
     return clear.is_clear({mesh.E(k[0], 0), mesh.E(k[0], 1), mesh.E(k[1], 0), mesh.E(k[1], 1)});
   };
-  if (!std::all_of(all.vertex_face.begin(), all.vertex_face.end(), vertex_face_clear) ||
-      !std::all_of(all.edge_edge.begin(), all.edge_edge.end(), edge_edge_clear))
-    return false;
+  const auto all_clear = [&](const Candidates& pairs) {
+    return std::all_of(pairs.vertex_face.begin(), pairs.vertex_face.end(), vertex_face_clear) &&
+           std::all_of(pairs.edge_edge.begin(), pairs.edge_edge.end(), edge_edge_clear);
+  };
+  const Candidates* near = moved->empty() ? m_swept->near() : nullptr;
+  if (!near) {
+    if (!all_clear(m_swept->all())) return false;
+  } else {
+    if (!all_clear(*near)) return false;
+    std::vector<char> far(m_model.bodies.size(), 0);
+    for (std::size_t b = 0; b < far.size(); ++b) far[b] = 8 * m_swept->body_reach()[b] > no_cut;
+    if (std::find(far.begin(), far.end(), 1) != far.end()) {
+      const auto body_far = [&](const std::vector<int>& body_of, int primitive) {
+        return far[std::size_t(body_of[std::size_t(primitive)])] != 0;
+      };
+      const Candidates& all = m_swept->all();
+      for (const auto& k : all.vertex_face)
+        if ((body_far(mesh.vertex_body, k[0]) || body_far(mesh.face_body, k[1])) && !vertex_face_clear(k)) return false;
+      for (const auto& k : all.edge_edge)
+        if ((body_far(mesh.edge_body, k[0]) || body_far(mesh.edge_body, k[1])) && !edge_edge_clear(k)) return false;
+    }
+  }
   m_swept->extend(m_model, c.x, x1, *moved);
   ++m_kept_moves;
   return true;
