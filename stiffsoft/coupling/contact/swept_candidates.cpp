@@ -57,7 +57,7 @@ std::optional<std::vector<int>> SweptCandidates::extension(const Model& model, c
                                                            const Eigen::MatrixX3d& x1) const {
   if (x0.rows() != m_lo.rows() || x1.rows() != m_lo.rows()) return std::nullopt;
   // Vertices within the slack of their bodies' regions come closer than 2·proximity only where
-  // the regions, grown by proximity + slack, meet. A moved body's region is its box on the
+  // the regions, grown as all()'s boxes, meet. A moved body's region is its box on the
   // segment; it must meet no other body's, moved or not.
   const auto meets_another = [&](int b, const AxisBox& grown, const std::vector<AxisBox>& region) {
     for (std::size_t o = 0; o < region.size(); ++o)
@@ -198,9 +198,8 @@ void SweptCandidates::move_boxes(const Model& model, const Eigen::MatrixX3d& x0,
 AxisBox SweptCandidates::grown_segment_box(const BodyModel& body, const Eigen::MatrixX3d& x0,
                                            const Eigen::MatrixX3d& x1) const {
   const Eigen::Index first = body.vertex_begin, count = body.vertex_end - body.vertex_begin;
-  const double growth = m_inflation;
-  return AxisBox(x0.middleRows(first, count).array().min(x1.middleRows(first, count).array()).colwise().minCoeff().transpose() - growth,
-                 x0.middleRows(first, count).array().max(x1.middleRows(first, count).array()).colwise().maxCoeff().transpose() + growth);
+  return AxisBox(x0.middleRows(first, count).array().min(x1.middleRows(first, count).array()).colwise().minCoeff().transpose() - m_inflation,
+                 x0.middleRows(first, count).array().max(x1.middleRows(first, count).array()).colwise().maxCoeff().transpose() + m_inflation);
 }
 
 }  // namespace stiffsoft
