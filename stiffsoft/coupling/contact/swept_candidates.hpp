@@ -33,7 +33,7 @@ class SweptCandidates {
   /// Whether the candidates can serve the segment x0 → x1 (|V|×3, m) as well, without a new
   /// broad phase: every body either lies, at both ends, within the slack of its vertices'
   /// boxes (its pairs are already here), or is an affine body whose boxes on the segment,
-  /// grown by proximity + slack, come near no other body's (it has no pair). Returns those
+  /// grown as all()'s boxes, come near no other body's (it has no pair). Returns those
   /// moved bodies (none, often) for extend(); nullopt when the segment is not served (a soft
   /// body left its boxes, a moved body came near another, or more than a few bodies moved).
   std::optional<std::vector<int>> extension(const Model& model, const Eigen::MatrixX3d& x0,
