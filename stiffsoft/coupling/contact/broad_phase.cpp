@@ -349,23 +349,22 @@ Candidates broad_phase(const Model& model, const Eigen::MatrixX3d& x0, const Eig
 }
 
 Candidates pairs_of_bodies(const Model& model, const Eigen::ArrayX3d& lo, const Eigen::ArrayX3d& hi,
-                           double inflation, const std::vector<int>& bodies) {
+                           double inflation, const std::vector<AxisBox>& body_box, const std::vector<int>& bodies) {
   const CollisionMesh& mesh = model.mesh;
   const int nb = int(model.bodies.size());
-  // Every vertex's box; the faces' and edges' only for the bodies a pair needs.
+  // The vertices', faces' and edges' boxes only of the bodies a pair needs.
   PrimitiveBoxes boxes;
   boxes.vertex.resize(std::size_t(lo.rows()));
-  for (Eigen::Index v = 0; v < lo.rows(); ++v)
-    boxes.vertex[std::size_t(v)] = {lo.row(v).transpose() - inflation, hi.row(v).transpose() + inflation};
   boxes.face.resize(std::size_t(mesh.F.rows()));
   boxes.edge.resize(std::size_t(mesh.E.rows()));
-  const std::vector<Box> body_box = body_boxes(model, boxes.vertex);
   std::vector<int> place(std::size_t(nb), -1);  // in `bodies`
   for (std::size_t i = 0; i < bodies.size(); ++i) place[std::size_t(bodies[i])] = int(i);
   std::vector<char> spanned(std::size_t(nb), 0);
   const auto span_body = [&](int b) {
     if (spanned[std::size_t(b)]) return;
     const BodyModel& body = model.bodies[std::size_t(b)];
+    for (int v = body.vertex_begin; v < body.vertex_end; ++v)
+      boxes.vertex[std::size_t(v)] = {lo.row(v).transpose() - inflation, hi.row(v).transpose() + inflation};
     span(mesh.F, boxes.vertex, body.face_begin, body.face_end, boxes.face);
     span(mesh.E, boxes.vertex, body.edge_begin, body.edge_end, boxes.edge);
     spanned[std::size_t(b)] = 1;

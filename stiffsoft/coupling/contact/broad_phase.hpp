@@ -54,10 +54,11 @@ struct ShrunkCandidates {
 
 /// Primitive pairs, as broad_phase() would consider them, between each body of `bodies` (without
 /// self-contact) and every other body, a pair of two of them once, whose boxes overlap: a vertex's
-/// box is its row of lo and hi (|V|×3, m) grown by `inflation` (m). In the order of `bodies`,
-/// then of the other body.
+/// box is its row of lo and hi (|V|×3, m) grown by `inflation` (m), and `body_box` holds each
+/// body's box, the union of its vertices' (as BroadPhase::find's `body_boxes`). In the order of
+/// `bodies`, then of the other body.
 Candidates pairs_of_bodies(const Model& model, const Eigen::ArrayX3d& lo, const Eigen::ArrayX3d& hi,
-                           double inflation, const std::vector<int>& bodies);
+                           double inflation, const std::vector<AxisBox>& body_box, const std::vector<int>& bodies);
 
 /// Fills each of `shrunk` with the pairs of `pairs` that BroadPhase::find(model, x0, x1,
 /// inflation, shrunk) puts there (the same boxes and test), in the order of `pairs`: where

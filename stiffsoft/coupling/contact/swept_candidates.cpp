@@ -169,7 +169,7 @@ bool SweptCandidates::advance(const Model& model, const Eigen::MatrixX3d& x0, co
       c.edge_edge.erase(std::remove_if(c.edge_edge.begin(), c.edge_edge.end(), of_moved_edge_edge),
                         c.edge_edge.end());
     };
-    Candidates found = pairs_of_bodies(model, m_lo, m_hi, m_inflation, moved);
+    Candidates found = pairs_of_bodies(model, m_lo, m_hi, m_inflation, m_region, moved);
     drop_moved(m_all);
     m_all.append(found);
     // Without near candidates yet, the first build sorts out all() anyway.
