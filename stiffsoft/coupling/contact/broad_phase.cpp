@@ -349,7 +349,8 @@ Candidates broad_phase(const Model& model, const Eigen::MatrixX3d& x0, const Eig
 }
 
 Candidates pairs_of_bodies(const Model& model, const Eigen::ArrayX3d& lo, const Eigen::ArrayX3d& hi,
-                           double inflation, const std::vector<AxisBox>& body_box, const std::vector<int>& bodies) {
+                           double inflation, const std::vector<AxisBox>& body_box,
+                           const std::vector<int>& bodies) {
   const CollisionMesh& mesh = model.mesh;
   const int nb = int(model.bodies.size());
   // The vertices', faces' and edges' boxes only of the bodies a pair needs.

@@ -58,7 +58,8 @@ struct ShrunkCandidates {
 /// body's box, the union of its vertices' (as BroadPhase::find's `body_boxes`). In the order of
 /// `bodies`, then of the other body.
 Candidates pairs_of_bodies(const Model& model, const Eigen::ArrayX3d& lo, const Eigen::ArrayX3d& hi,
-                           double inflation, const std::vector<AxisBox>& body_box, const std::vector<int>& bodies);
+                           double inflation, const std::vector<AxisBox>& body_box,
+                           const std::vector<int>& bodies);
 
 /// Fills each of `shrunk` with the pairs of `pairs` that BroadPhase::find(model, x0, x1,
 /// inflation, shrunk) puts there (the same boxes and test), in the order of `pairs`: where
