@@ -198,8 +198,9 @@ void SweptCandidates::move_boxes(const Model& model, const Eigen::MatrixX3d& x0,
 AxisBox SweptCandidates::grown_segment_box(const BodyModel& body, const Eigen::MatrixX3d& x0,
                                            const Eigen::MatrixX3d& x1) const {
   const Eigen::Index first = body.vertex_begin, count = body.vertex_end - body.vertex_begin;
-  return AxisBox(x0.middleRows(first, count).array().min(x1.middleRows(first, count).array()).colwise().minCoeff().transpose() - m_inflation,
-                 x0.middleRows(first, count).array().max(x1.middleRows(first, count).array()).colwise().maxCoeff().transpose() + m_inflation);
+  const auto a = x0.middleRows(first, count).array(), b = x1.middleRows(first, count).array();
+  return AxisBox(a.min(b).colwise().minCoeff().transpose() - m_inflation,
+                 a.max(b).colwise().maxCoeff().transpose() + m_inflation);
 }
 
 }  // namespace stiffsoft

@@ -309,11 +309,11 @@ bool BarrierTerm::keeps_clear(const Configuration& c, const Eigen::MatrixX3d& x1
     if (!all_clear(m_swept->all())) return false;
   } else {
     if (!all_clear(*near)) return false;
-    std::vector<char> far(m_model.bodies.size(), 0);
-    for (std::size_t b = 0; b < far.size(); ++b) far[b] = 8 * m_swept->body_reach()[b] > no_cut;
-    if (std::find(far.begin(), far.end(), 1) != far.end()) {
+    const std::vector<double>& reach = m_swept->body_reach();
+    const auto far = [&](double r) { return 8 * r > no_cut; };
+    if (std::any_of(reach.begin(), reach.end(), far)) {
       const auto body_far = [&](const std::vector<int>& body_of, int primitive) {
-        return far[std::size_t(body_of[std::size_t(primitive)])] != 0;
+        return far(reach[std::size_t(body_of[std::size_t(primitive)])]);
       };
       const Candidates& all = m_swept->all();
       for (const auto& k : all.vertex_face)
