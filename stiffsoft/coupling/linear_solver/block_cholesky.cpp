@@ -1,14 +1,17 @@
 #include <stiffsoft/coupling/linear_solver/block_cholesky.hpp>
 
-#include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_for_each.h>
+#include <tbb/task_arena.h>
 
 #include <Eigen/OrderingMethods>
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -20,42 +23,56 @@ namespace stiffsoft {
 
 namespace {
 
-/// How the columns of one level are split between threads, by the level's work in some unit:
-/// levels with less than `minimum` run on the calling thread, larger ones in tasks of about
-/// `grain`. A task costs a few µs to hand out.
-struct LevelSplit {
-  int minimum, grain;
-};
-/// The factorisation's unit is a column: a 12×12 column's factorisation costs about 1 µs.
-constexpr LevelSplit kFactorSplit{32, 16};
-/// The triangular solves' unit is a block of L: a 12×12 block's product costs about 0.05 µs.
-/// (A level of IC(0) on a pile is a layer of bodies, about 100 columns of 6 blocks each.)
-constexpr LevelSplit kSolveSplit{256, 128};
-
 /// Blocks per task of the comparisons and copies around the factorisation: a 12×12 block's
 /// copy costs about 50 ns, so a task of 32 blocks outweighs its hand-out.
 constexpr std::size_t kCopyGrain = 32;
 
-/// Calls f(j) for every column, level by level (the columns that update a column first when
-/// `upward`, last otherwise); the columns of one level are independent. work[l] is level l's
-/// work in the split's unit (empty: its number of columns).
-template <class F>
-void for_levels(const std::vector<int>& offsets, const std::vector<int>& columns, bool upward, LevelSplit split,
-                const std::vector<int>& work, F&& f) {
-  const int levels = int(offsets.size()) - 1;
-  for (int l = 0; l < levels; ++l) {
-    const int level = upward ? l : levels - 1 - l;
-    const int begin = offsets[level], end = offsets[level + 1];
-    const int units = work.empty() ? end - begin : work[level];
-    if (units < split.minimum) {
-      for (int k = begin; k < end; ++k) f(columns[k]);
-      continue;
-    }
-    const int grain = std::max(1, int(std::int64_t(split.grain) * (end - begin) / units));
-    tbb::parallel_for(tbb::blocked_range<int>(begin, end, grain), [&](const tbb::blocked_range<int>& r) {
-      for (int k = r.begin(); k < r.end(); ++k) f(columns[k]);
-    });
+/// A factorisation of fewer columns than this runs on the calling thread: a 12×12 column's
+/// factorisation costs about 1 µs, handing one out a few µs.
+constexpr std::size_t kSerialColumns = 32;
+
+/// Calls f(j) for every column j of `todo` once the columns of `todo` it waits on are done:
+/// waits_on(j, g) calls g(k) for every column k that j waits on, released_by(k, g) calls g(j)
+/// for every column j that waits on k. `todo` lists each column after those it waits on, and
+/// with one thread (or few columns) that is the order. Otherwise a column runs as soon as its
+/// last dependency is done, on the thread that finished it (the first it releases) or handed to
+/// another (the rest): no barrier between levels of the dependency graph, whose narrow levels
+/// (the top of an elimination tree) hold a third of a pile's factorisation (docs/benchmarks.md,
+/// session 54). f must read only the columns j waits on and write only its own.
+template <class WaitsOn, class ReleasedBy, class F>
+void for_each_when_ready(const std::vector<int>& todo, int columns, WaitsOn&& waits_on, ReleasedBy&& released_by,
+                         F&& f) {
+  const bool one_thread = tbb::this_task_arena::max_concurrency() == 1 ||
+                          tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) == 1;
+  if (todo.size() < kSerialColumns || one_thread) {
+    for (int j : todo) f(j);
+    return;
   }
+  std::vector<char> member(std::size_t(columns), 0);
+  for (int j : todo) member[std::size_t(j)] = 1;
+  const std::unique_ptr<std::atomic<int>[]> pending(new std::atomic<int>[std::size_t(columns)]);
+  std::vector<int> ready;
+  for (int j : todo) {
+    int count = 0;
+    waits_on(j, [&](int k) { count += member[std::size_t(k)]; });
+    pending[std::size_t(j)].store(count, std::memory_order_relaxed);
+    if (count == 0) ready.push_back(j);
+  }
+  tbb::parallel_for_each(ready.begin(), ready.end(), [&](int first, tbb::feeder<int>& feeder) {
+    for (int j = first; j >= 0;) {
+      f(j);
+      int next = -1;
+      released_by(j, [&](int d) {
+        // acq_rel: the last release sees every write of the columns d waits on.
+        if (!member[std::size_t(d)] || pending[std::size_t(d)].fetch_sub(1, std::memory_order_acq_rel) != 1) return;
+        if (next < 0)
+          next = d;
+        else
+          feeder.add(d);
+      });
+      j = next;
+    }
+  });
 }
 
 /// A rows × cols block of the pool, column-major; S fixes both sizes at compile time when every
@@ -254,22 +271,6 @@ void BlockCholesky::analyze(const BlockUpper& H) {
     }
   }
 
-  // Columns by depth in the update graph: depth(j) = 1 + the largest depth of the columns that
-  // update j (0 for none), so a level's columns depend only on earlier levels. For the exact
-  // factor that is the height in the elimination tree (a column's updates are its descendants).
-  std::vector<int> depth(nb, 0);
-  for (int k = 0; k < nb; ++k)
-    for (int j : structure[k]) depth[j] = std::max(depth[j], depth[k] + 1);
-  const int levels = nb ? 1 + *std::max_element(depth.begin(), depth.end()) : 0;
-  m_level_offsets.assign(levels + 1, 0);
-  for (int j = 0; j < nb; ++j) ++m_level_offsets[depth[j] + 1];
-  for (int l = 0; l < levels; ++l) m_level_offsets[l + 1] += m_level_offsets[l];
-  m_by_level.resize(nb);
-  std::vector<int> next(m_level_offsets.begin(), m_level_offsets.end() - 1);
-  for (int j = 0; j < nb; ++j) m_by_level[next[depth[j]]++] = j;
-  m_level_blocks.assign(levels, 0);
-  for (int j = 0; j < nb; ++j) m_level_blocks[depth[j]] += 1 + m_column_offsets[j + 1] - m_column_offsets[j];
-
   // Where each stored block of H goes, and where its numbers are kept between factorisations;
   // which blocks of L no block of H fills.
   std::vector<char> filled_diagonal(nb, 0), filled_entry(m_entries.size(), 0);
@@ -404,14 +405,19 @@ bool BlockCholesky::factorize(const BlockUpper& H, double shift, double boost) {
     std::fill(redo.begin(), redo.end(), 0);
     for (std::size_t k = 0; k < blocks; ++k)
       if (changed[k]) redo[m_target[k].column] = 1;
-    for (int j : m_by_level)  // the columns that update a column come before it
+    for (int j = 0; j < int(nb); ++j)  // the columns that update a column come before it
       for (int u = m_update_offsets[j]; u < m_update_offsets[j + 1] && !redo[j]; ++u) redo[j] = redo[m_updates[u].column];
   }
   m_refactored = std::size_t(std::count(redo.begin(), redo.end(), 1));
   tbb::enumerable_thread_specific<std::vector<int>> slots(std::vector<int>(nb, -1));
   std::atomic<bool> ok{true};
-  for_levels(m_level_offsets, m_by_level, true, kFactorSplit, {}, [&](int j) {
-    if (!redo[j] || !ok.load(std::memory_order_relaxed)) return;
+  std::vector<int> todo;  // in ascending order: each column after those that update it
+  for (int j = 0; j < int(nb); ++j)
+    if (redo[j]) todo.push_back(j);
+  const auto updaters = [this](int j, auto&& g) { for_each_updater(j, g); };
+  const auto updated = [this](int k, auto&& g) { for_each_struct_row(k, g); };
+  for_each_when_ready(todo, int(nb), updaters, updated, [&](int j) {
+    if (!ok.load(std::memory_order_relaxed)) return;
     load_column(j, H, shift, boost);
     const bool column_ok = m_uniform == 12 ? factor_column<12>(j, slots.local())
                            : m_uniform == 3 ? factor_column<3>(j, slots.local())
@@ -435,8 +441,9 @@ template <int S>
 void BlockCholesky::solve_in_place(Eigen::VectorXd& x) const {
   const double* pool = m_pool.data();
   const auto L = [&](std::size_t at, int rows, int cols) { return Eigen::Map<const Eigen::Matrix<double, S, S>>(pool + at, rows, cols); };
+  const int nb = int(m_columns.size());
   // L y = b, children first: y_j = L_jj⁻¹ (b_j − Σ_k L_jk y_k).
-  for_levels(m_level_offsets, m_by_level, true, kSolveSplit, m_level_blocks, [&](int j) {
+  for (int j = 0; j < nb; ++j) {
     const Column& cj = m_columns[j];
     Segment<S> y(x.data() + cj.offset, cj.size);
     for (int u = m_update_offsets[j]; u < m_update_offsets[j + 1]; ++u) {
@@ -445,9 +452,9 @@ void BlockCholesky::solve_in_place(Eigen::VectorXd& x) const {
       y -= L(m_entries[m_column_offsets[k] + p].at, cj.size, ck.size).lazyProduct(Segment<S>(x.data() + ck.offset, ck.size));
     }
     y = Eigen::Matrix<double, S, 1>(L(cj.diagonal, cj.size, cj.size).lazyProduct(y));  // L_jj⁻¹: zero above its diagonal
-  });
+  }
   // Lᵀ x = y, parents first: x_j = L_jj⁻ᵀ (y_j − Σ_i L_ijᵀ x_i).
-  for_levels(m_level_offsets, m_by_level, false, kSolveSplit, m_level_blocks, [&](int j) {
+  for (int j = nb - 1; j >= 0; --j) {
     const Column& cj = m_columns[j];
     Segment<S> y(x.data() + cj.offset, cj.size);
     for (int e = m_column_offsets[j]; e < m_column_offsets[j + 1]; ++e) {
@@ -455,7 +462,7 @@ void BlockCholesky::solve_in_place(Eigen::VectorXd& x) const {
       y -= L(m_entries[e].at, ci.size, cj.size).transpose().lazyProduct(Segment<S>(x.data() + ci.offset, ci.size));
     }
     y = Eigen::Matrix<double, S, 1>(L(cj.diagonal, cj.size, cj.size).transpose().lazyProduct(y));
-  });
+  }
 }
 
 Eigen::VectorXd BlockCholesky::multiply(const Eigen::VectorXd& x) const {

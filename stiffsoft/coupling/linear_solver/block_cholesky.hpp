@@ -4,8 +4,8 @@
 /// tree are those of the block graph, and every operation is a small dense one. The rigid
 /// piles' factors are a few hundred 12×12 blocks with little fill, which CHOLMOD's simplicial
 /// method treats one scalar column at a time and its supernodal one with a BLAS call per small
-/// supernode; here the columns of each wide level of the elimination tree are factorised in
-/// parallel.
+/// supernode; here each column is factorised as soon as the columns that update it are, on
+/// whichever thread is free (the elimination tree's branches in parallel).
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -21,13 +21,13 @@ namespace stiffsoft {
 /// lower triangular in dense blocks.
 ///
 /// Deterministic: every block of L is computed by the same operations in the same order
-/// whatever the thread count (the parallelism is over independent columns of one level of the
-/// elimination tree), so factors and solutions are the same bit for bit.
+/// whatever the thread count (a column runs once the columns it reads are complete, and writes
+/// only its own blocks), so factors and solutions are the same bit for bit.
 ///
 /// With Fill::None it is the incomplete factorisation IC(0) over the blocks instead: the DOF
 /// blocks in their own order, L keeping exactly the blocks of H (every update that would fill
-/// another block dropped), a preconditioner for conjugate gradients. Its columns are grouped by
-/// their depth in the graph of which columns update which, so a level's are independent too.
+/// another block dropped), a preconditioner for conjugate gradients. Its columns wait on the
+/// same way: each on the earlier columns that update it.
 class BlockCholesky {
  public:
   /// Which blocks of L the factorisation may fill.
@@ -101,7 +101,9 @@ class BlockCholesky {
   /// Starts column j of L from H + shift·I + boost·diag(H): its blocks of H copied into the
   /// pool, its fill-in zeroed. Each column owns its places in the pool, so columns load in parallel.
   void load_column(int j, const BlockUpper& H, double shift, double boost);
-  /// x ← L⁻ᵀ L⁻¹ x (the original DOF order throughout: P only decides the order of columns).
+  /// x ← L⁻ᵀ L⁻¹ x (the original DOF order throughout: P only decides the order of columns), on
+  /// the calling thread: a column's part costs about 0.3 µs, and on two threads the columns
+  /// handed out cost more than they saved (docs/benchmarks.md, session 54).
   template <int S>
   void solve_in_place(Eigen::VectorXd& x) const;
 
@@ -110,8 +112,16 @@ class BlockCholesky {
   std::vector<Entry> m_entries;                  // off-diagonal blocks of L, by column
   std::vector<int> m_update_offsets;             // m_updates[m_update_offsets[j] …): the k that update j
   std::vector<Update> m_updates;
-  std::vector<int> m_level_offsets, m_by_level;  // columns grouped by their depth in the update graph
-  std::vector<int> m_level_blocks;               // blocks of L in each level's columns
+  /// Calls g(k) for every column k that updates column j (j ∈ struct(k)), in ascending k.
+  template <class G>
+  void for_each_updater(int j, G&& g) const {
+    for (int u = m_update_offsets[j]; u < m_update_offsets[j + 1]; ++u) g(m_updates[u].column);
+  }
+  /// Calls g(i) for every block row i of struct(k): the columns column k updates.
+  template <class G>
+  void for_each_struct_row(int k, G&& g) const {
+    for (int e = m_column_offsets[k]; e < m_column_offsets[k + 1]; ++e) g(m_entries[e].row);
+  }
   Fill m_fill;
   /// Where a stored block of H goes: L_jj's place (its upper triangle into L_jj's lower one),
   /// a block of L as it is, or a block of L transposed (when its block row comes first in the

@@ -1,6 +1,7 @@
 #include <stiffsoft/coupling/terms/barrier_term.hpp>
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
@@ -13,6 +14,7 @@
 #include <stiffsoft/coupling/ccd/ccd.hpp>
 #include <stiffsoft/coupling/contact/clear_motion.hpp>
 #include <stiffsoft/coupling/contact/distance_classification.hpp>
+#include <stiffsoft/coupling/contact/ordered_chunks.hpp>
 #include <stiffsoft/coupling/contact/squared_distance.hpp>
 #include <stiffsoft/coupling/contact/projected_barrier_hessian.hpp>
 #include <stiffsoft/coupling/model/stencil_jacobian.hpp>
@@ -47,6 +49,9 @@ constexpr double kSweptSlack = 0.1;
 /// this, in d̂, meet (SweptCandidates::tight; the slack the candidates had before session 48,
 /// so the same islands).
 constexpr double kIslandSlack = 0.01;
+/// Candidate pairs per chunk when a move's islands are joined: a pair's blocks cost a few ns to
+/// look up, a chunk's hand-out a few µs.
+constexpr std::size_t kJoinGrain = 4096;
 /// Whether a step from distance d0 to d1 (both in m, d0 < d̂) releases a contact: leaves it
 /// 35–65 % of its way out of d̂, as Newton on the barrier's cubic tail does (half of it).
 bool releases(double d0, double d1, double dhat) {
@@ -229,18 +234,28 @@ void BarrierTerm::join_coupled_blocks(const Configuration& c, const Eigen::Matri
   m_move_clear = keeps_clear(c, x1);
   const CollisionMesh& mesh = m_model.mesh;
   const std::vector<int>& block = m_vertex_block;
-  // The pairs come body pair by body pair, so a pair's blocks are mostly the last pair's.
-  std::array<int, 4> last{-1, -1, -1, -1};
-  const auto join = [&](const std::array<int, 4>& blocks) {
-    if (blocks == last) return;
-    islands.join_blocks(blocks);
-    last = blocks;
+  // Joins the blocks of every pair. The pairs come body pair by body pair, so a pair's blocks
+  // are mostly the last pair's: chunks of pairs list their blocks in parallel without those
+  // repeats, and the few lists left are joined in turn (the islands do not depend on the order
+  // of the joins: each is numbered from its smallest block).
+  using Joins = std::vector<std::array<int, 4>>;
+  const auto add = [](Joins& part, const std::array<int, 4>& b) {
+    if (part.empty()) return part.push_back(b);
+    const std::array<int, 4>& last = part.back();
+    if (last[0] != b[0] || last[1] != b[1] || last[2] != b[2] || last[3] != b[3]) part.push_back(b);
   };
-  // Joins the blocks of every pair.
+  const auto join_all = [&](const Joins& part) {
+    for (const std::array<int, 4>& blocks : part) islands.join_blocks(blocks);
+  };
   const auto join_pairs = [&](const Candidates& pairs) {
-    for (const auto& [v, f] : pairs.vertex_face) join({block[v], block[mesh.F(f, 0)], block[mesh.F(f, 1)], block[mesh.F(f, 2)]});
-    for (const auto& [ea, eb] : pairs.edge_edge)
-      join({block[mesh.E(ea, 0)], block[mesh.E(ea, 1)], block[mesh.E(eb, 0)], block[mesh.E(eb, 1)]});
+    in_ordered_chunks<Joins>(pairs.vertex_face.size(), kJoinGrain, [&](std::size_t k, Joins& part) {
+      const auto& [v, f] = pairs.vertex_face[k];
+      add(part, {block[v], block[mesh.F(f, 0)], block[mesh.F(f, 1)], block[mesh.F(f, 2)]});
+    }, join_all);
+    in_ordered_chunks<Joins>(pairs.edge_edge.size(), kJoinGrain, [&](std::size_t k, Joins& part) {
+      const auto& [ea, eb] = pairs.edge_edge[k];
+      add(part, {block[mesh.E(ea, 0)], block[mesh.E(ea, 1)], block[mesh.E(eb, 0)], block[mesh.E(eb, 1)]});
+    }, join_all);
   };
   if (m_move_clear) {
     // Every CCD bound of a kept move is 1, so its islands step alike; they are joined by the
@@ -371,22 +386,33 @@ void BarrierTerm::ccd_bounds(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d&
   };
   std::vector<double> t_max(bound.size(), 1.0);
   m_cut.clear();
+  // The pairs whose query stopped before the bound it looked up to: cut, and their times lower
+  // their island's bound once every query of the pass is done.
+  struct Stop {
+    CutPair pair;
+    int island;
+    double time;
+  };
   const auto lower = [&](std::size_t count, const auto& vertices_of, const auto& time_of, bool vertex_face) {
-    std::vector<int> island(count);
-    std::vector<double> time(count, 1.0);
+    tbb::enumerable_thread_specific<std::vector<Stop>> stops;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+      std::vector<Stop>& local = stops.local();
       ccd::CcdSettings s;
       for (std::size_t k = r.begin(); k < r.end(); ++k) {
-        island[k] = island_of(vertices_of(k));
-        if (island[k] < 0) continue;
-        s.t_max = t_max[std::size_t(island[k])];
-        time[k] = s.t_max > 0 ? time_of(k, s) : 0.0;
+        const std::array<int, 4> vertices = vertices_of(k);
+        const int island = island_of(vertices);
+        if (island < 0) continue;
+        s.t_max = t_max[std::size_t(island)];
+        const double time = s.t_max > 0 ? time_of(k, s) : 0.0;
+        if (time < s.t_max) local.push_back({{vertices, vertex_face}, island, time});
       }
     });
-    for (std::size_t k = 0; k < count; ++k)  // stopped before the bound its query looked up to
-      if (island[k] >= 0 && time[k] < t_max[std::size_t(island[k])]) m_cut.push_back({vertices_of(k), vertex_face});
-    for (std::size_t k = 0; k < count; ++k)
-      if (island[k] >= 0) t_max[std::size_t(island[k])] = std::min(t_max[std::size_t(island[k])], time[k]);
+    // In the threads' order, which neither the minima nor the sorted cut pairs depend on.
+    for (const std::vector<Stop>& local : stops)
+      for (const Stop& stop : local) {
+        m_cut.push_back(stop.pair);
+        t_max[std::size_t(stop.island)] = std::min(t_max[std::size_t(stop.island)], stop.time);
+      }
   };
   lower(candidates.vertex_face.size(), vertex_face_vertices, vertex_face_time, true);
   lower(candidates.edge_edge.size(), edge_edge_vertices, edge_edge_time, false);
