@@ -7,6 +7,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
+#include <stiffsoft/coupling/for_each_item.hpp>
+
 namespace stiffsoft {
 
 namespace {
@@ -14,6 +16,9 @@ namespace {
 /// bodies that move that much are rarely all alone, and a pile in motion pays a Newton
 /// iteration beside which a new broad phase is small.
 constexpr std::size_t kMostMovedBodies = 8;
+/// Bodies per task when every vertex is checked against its box: a seed pile's body has about 20
+/// vertices, a few ns each, and a task's hand-out costs a few µs.
+constexpr std::size_t kBodyGrain = 64;
 /// advance() finds the pairs of at most this share of the bodies (and at least kMostMovedBodies)
 /// again; beyond it a new broad phase is no dearer.
 constexpr std::size_t kAdvancedShare = 8;
@@ -74,12 +79,18 @@ std::optional<std::vector<int>> SweptCandidates::extension(const Model& model, c
         meets_another(b, grown_segment_box(body, x0, x1), m_region))
       return std::nullopt;
   }
+  // Every vertex, body by body in parallel (all of a pile's bodies, every line-search trial).
+  std::vector<char> out(model.bodies.size());
+  for_each_item(model.bodies.size(), kBodyGrain, [&](std::size_t b) {
+    const BodyModel& body = model.bodies[b];
+    const Eigen::Index count = body.vertex_end - body.vertex_begin;
+    out[b] = count > 0 && !inside(x0, x1, body.vertex_begin, count);
+  });
   std::vector<int> moved;
   std::vector<AxisBox> region = m_region;
   for (int b = 0; b < int(model.bodies.size()); ++b) {
     const BodyModel& body = model.bodies[std::size_t(b)];
-    const Eigen::Index count = body.vertex_end - body.vertex_begin;
-    if (count == 0 || inside(x0, x1, body.vertex_begin, count)) continue;
+    if (!out[std::size_t(b)]) continue;
     if (moved.size() == kMostMovedBodies || body.self_contact()) return std::nullopt;
     moved.push_back(b);
     region[std::size_t(b)] = grown_segment_box(body, x0, x1);
