@@ -375,8 +375,9 @@ void BarrierTerm::ccd_bounds(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d&
   };
   // Per island (one without `islands`): its point–triangle pairs with t_max = 1, then its
   // edge–edge pairs with t_max = their minimum, never a time another query found (the time
-  // ACCD returns depends on its bound). Each pair's time is kept, then reduced in pair order, so
-  // the bounds do not depend on the thread count and the split of the work.
+  // ACCD returns depends on its bound). Every query of a pass looks up to the bound the pass
+  // started with, and the times are reduced after it by minima (exact in any order), so the
+  // bounds do not depend on the thread count and the split of the work.
   const auto island_of = [&](const std::array<int, 4>& vertices) {
     for (int v : vertices) {
       const int b = v < 0 ? -1 : m_vertex_block[std::size_t(v)];
