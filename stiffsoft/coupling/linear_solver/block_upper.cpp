@@ -17,6 +17,31 @@ namespace {
 /// upper triangle with `shift` added to its diagonal first. S fixes both sizes at compile time
 /// when they are equal and known (Eigen::Dynamic otherwise).
 enum class Part { Row, Column };
+
+/// y += A x for a 12×12 block A (column-major at `a`): each row's sum from zero over the columns
+/// in order, then added to y, the order of Eigen's column-major matrix–vector kernel
+/// (GeneralMatrixVector.h), whose calls for the off-diagonal blocks cost 7 % of full's second
+/// second at 1/240 (docs/benchmarks.md, session 54); the same numbers bit for bit, in a loop the
+/// compiler unrolls.
+inline void add_product(const double* a, const double* x, double* y) {
+  Eigen::Matrix<double, 12, 1> sum = Eigen::Matrix<double, 12, 1>::Zero();
+  for (int j = 0; j < 12; ++j) sum += Eigen::Map<const Eigen::Matrix<double, 12, 1>>(a + 12 * j) * x[j];
+  Eigen::Map<Eigen::Matrix<double, 12, 1>>(y) += sum;
+}
+
+/// y += Aᵀ x for a 12×12 block A (column-major at `a`): each column's dot product with x as
+/// Eigen's row-major kernel forms it with two-double packets (the even and the odd terms summed
+/// apart, in order, then added), then added to y; the same numbers bit for bit.
+inline void add_transposed_product(const double* a, const double* x, double* y) {
+  using Pair = Eigen::Array2d;  // (even term, odd term): one two-double packet
+  for (int i = 0; i < 12; ++i) {
+    const double* column = a + 12 * i;
+    Pair sum = Pair::Zero();
+    for (int j = 0; j < 12; j += 2) sum += Eigen::Map<const Pair>(column + j) * Eigen::Map<const Pair>(x + j);
+    y[i] += sum[0] + sum[1];
+  }
+}
+
 template <int S>
 void multiply_block(const double* values, int i, int j, Part target, const BlockUpper& H, double shift,
                     const Eigen::VectorXd& x, Eigen::VectorXd& y) {
@@ -29,6 +54,11 @@ void multiply_block(const double* values, int i, int j, Part target, const Block
     y.segment<S>(H.offsets[j], sj).noalias() += D.template selfadjointView<Eigen::Upper>() * xj;
   } else if (i == j) {
     y.segment<S>(H.offsets[j], sj).noalias() += A.template selfadjointView<Eigen::Upper>() * xj;
+  } else if constexpr (S == 12) {
+    if (target == Part::Row)
+      add_product(values, &x[H.offsets[j]], &y[H.offsets[i]]);
+    else
+      add_transposed_product(values, &x[H.offsets[i]], &y[H.offsets[j]]);
   } else if (target == Part::Row) {
     y.segment<S>(H.offsets[i], si).noalias() += A * xj;
   } else {
