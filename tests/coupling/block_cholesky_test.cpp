@@ -2,7 +2,8 @@
 /// (12), soft-node (3) and mixed blocks, reuse of the analysis, refusal of an indefinite matrix,
 /// the fill its ordering keeps, the same factor bit for bit on one and two threads, a new
 /// factorisation that recomputes only the columns a change reaches, and blocks read in place
-/// (BlockUpper) factorised as their compressed copy is. The incomplete factorisation IC(0)
+/// (BlockUpper) factorised as their compressed copy is, and their products summed as Eigen's
+/// kernels sum them. The incomplete factorisation IC(0)
 /// (Fill::None): no fill, exact where the pattern fills nothing, and behind "block_cg" the
 /// same p bit for bit on one and two threads.
 
@@ -10,6 +11,7 @@
 #include <tbb/global_control.h>
 
 #include <Eigen/Cholesky>
+#include <cmath>
 #include <random>
 #include <stdexcept>
 
@@ -260,6 +262,48 @@ TEST(BlockCholesky, FactorisesBlocksInPlaceAsItFactorisesTheirCompressedCopy) {
   below.rows[0] = 1;  // column 0 claims block row 1
   BlockCholesky refuses;
   EXPECT_THROW(refuses.analyze(below), std::invalid_argument);
+}
+
+TEST(BlockUpper, MultipliesAffineBlocksAsEigensProductsDoBitForBit) {
+  // multiply() forms the 12×12 off-diagonal blocks' products in its own loops, summed in the
+  // order of Eigen's matrix–vector kernels: the same y as those products, block by block in
+  // multiply()'s order (a block of y: its column's blocks, then its row's in later columns).
+  const std::vector<int> sizes{3, 12, 12, 12, 3, 12, 12};  // odd and even offsets
+  const Eigen::SparseMatrix<double> A =
+      spd_upper(sizes, {{0, 1}, {1, 2}, {1, 3}, {2, 5}, {3, 4}, {3, 6}, {5, 6}, {2, 6}}, 17);
+  const GatheredBlocks g = gather_blocks(A, sizes);
+  const BlockUpper& H = g.blocks;
+  Eigen::VectorXd x(A.rows());
+  for (Eigen::Index i = 0; i < x.size(); ++i) x[i] = std::sin(1.7 * double(i) + 0.3);
+  Eigen::VectorXd expected = Eigen::VectorXd::Zero(x.size());
+  const auto block = [&](int k) {
+    const int i = H.rows[std::size_t(k)];
+    int j = 0;
+    while (H.column_starts[std::size_t(j) + 1] <= k) ++j;
+    return std::make_pair(i, j);
+  };
+  const auto A_of = [&](int k, int i, int j) { return Eigen::Map<const Eigen::MatrixXd>(H.values[std::size_t(k)], H.size(i), H.size(j)); };
+  for (int m = 0; m < H.num_blocks(); ++m) {
+    auto y = expected.segment(H.offsets[std::size_t(m)], H.size(m));
+    for (int k = H.column_starts[std::size_t(m)]; k < H.column_starts[std::size_t(m) + 1]; ++k) {
+      const auto [i, j] = block(k);
+      if (i == j)
+        y.noalias() += A_of(k, i, j).selfadjointView<Eigen::Upper>() * x.segment(H.offsets[std::size_t(j)], H.size(j));
+      else if (H.size(i) == 12 && H.size(j) == 12)
+        y.noalias() += Eigen::Matrix<double, 12, 12>(A_of(k, i, j)).transpose() * x.segment<12>(H.offsets[std::size_t(i)]);
+      else
+        y.noalias() += A_of(k, i, j).transpose() * x.segment(H.offsets[std::size_t(i)], H.size(i));
+    }
+    for (int k = 0; k < int(H.rows.size()); ++k) {
+      const auto [i, j] = block(k);
+      if (i != m || j == m) continue;
+      if (H.size(i) == 12 && H.size(j) == 12)
+        y.noalias() += Eigen::Matrix<double, 12, 12>(A_of(k, i, j)) * x.segment<12>(H.offsets[std::size_t(j)]);
+      else
+        y.noalias() += A_of(k, i, j) * x.segment(H.offsets[std::size_t(j)], H.size(j));
+    }
+  }
+  EXPECT_EQ(H.multiply(x), expected);
 }
 
 TEST(IncompleteBlockCholesky, KeepsOnlyTheBlocksOfHAndIsExactWhereTheyFillNothing) {
