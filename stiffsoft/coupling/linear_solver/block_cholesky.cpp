@@ -2,7 +2,6 @@
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
 #include <tbb/parallel_for_each.h>
 #include <tbb/task_arena.h>
 
@@ -10,7 +9,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <cstdint>
 #include <memory>
 #include <numeric>
 #include <stdexcept>
@@ -417,8 +415,12 @@ bool BlockCholesky::factorize(const BlockUpper& H, double shift, double boost) {
   std::vector<int> todo;  // in ascending order: each column after those that update it
   for (int j = 0; j < int(nb); ++j)
     if (redo[j]) todo.push_back(j);
-  const auto updaters = [this](int j, auto&& g) { for_each_updater(j, g); };
-  const auto updated = [this](int k, auto&& g) { for_each_struct_row(k, g); };
+  const auto updaters = [&](int j, auto&& g) {  // the columns k that update j (j ∈ struct(k))
+    for (int u = m_update_offsets[j]; u < m_update_offsets[j + 1]; ++u) g(m_updates[u].column);
+  };
+  const auto updated = [&](int k, auto&& g) {  // the columns k updates: struct(k)
+    for (int e = m_column_offsets[k]; e < m_column_offsets[k + 1]; ++e) g(m_entries[e].row);
+  };
   for_each_when_ready(todo, int(nb), updaters, updated, [&](int j) {
     if (!ok.load(std::memory_order_relaxed)) return;
     load_column(j, H, shift, boost);

@@ -112,16 +112,6 @@ class BlockCholesky {
   std::vector<Entry> m_entries;                  // off-diagonal blocks of L, by column
   std::vector<int> m_update_offsets;             // m_updates[m_update_offsets[j] …): the k that update j
   std::vector<Update> m_updates;
-  /// Calls g(k) for every column k that updates column j (j ∈ struct(k)), in ascending k.
-  template <class G>
-  void for_each_updater(int j, G&& g) const {
-    for (int u = m_update_offsets[j]; u < m_update_offsets[j + 1]; ++u) g(m_updates[u].column);
-  }
-  /// Calls g(i) for every block row i of struct(k): the columns column k updates.
-  template <class G>
-  void for_each_struct_row(int k, G&& g) const {
-    for (int e = m_column_offsets[k]; e < m_column_offsets[k + 1]; ++e) g(m_entries[e].row);
-  }
   Fill m_fill;
   /// Where a stored block of H goes: L_jj's place (its upper triangle into L_jj's lower one),
   /// a block of L as it is, or a block of L transposed (when its block row comes first in the

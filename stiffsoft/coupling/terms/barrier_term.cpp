@@ -361,14 +361,12 @@ void BarrierTerm::ccd_bounds(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d&
   std::optional<ClearMotion> clear;
   if (built_at(x0))
     clear.emplace(m_constraints, x0, x1, m_settings.dhat, ccd::CcdSettings{});
-  const auto vertex_face_time = [&](std::size_t k, const ccd::CcdSettings& s) {
-    const std::array<int, 4> v = vertex_face_vertices(k);
+  const auto vertex_face_time = [&](const std::array<int, 4>& v, const ccd::CcdSettings& s) {
     if (clear && clear->is_clear(v)) return s.t_max;
     return ccd::point_triangle_toi(row(x0_rows, v[0]), row(x0_rows, v[1]), row(x0_rows, v[2]), row(x0_rows, v[3]),
                                    row(x1_rows, v[0]), row(x1_rows, v[1]), row(x1_rows, v[2]), row(x1_rows, v[3]), s);
   };
-  const auto edge_edge_time = [&](std::size_t k, const ccd::CcdSettings& s) {
-    const std::array<int, 4> v = edge_edge_vertices(k);
+  const auto edge_edge_time = [&](const std::array<int, 4>& v, const ccd::CcdSettings& s) {
     if (clear && clear->is_clear(v)) return s.t_max;
     return ccd::edge_edge_toi(row(x0_rows, v[0]), row(x0_rows, v[1]), row(x0_rows, v[2]), row(x0_rows, v[3]),
                               row(x1_rows, v[0]), row(x1_rows, v[1]), row(x1_rows, v[2]), row(x1_rows, v[3]), s);
@@ -404,7 +402,7 @@ void BarrierTerm::ccd_bounds(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d&
         const int island = island_of(vertices);
         if (island < 0) continue;
         s.t_max = t_max[std::size_t(island)];
-        const double time = s.t_max > 0 ? time_of(k, s) : 0.0;
+        const double time = s.t_max > 0 ? time_of(vertices, s) : 0.0;
         if (time < s.t_max) local.push_back({{vertices, vertex_face}, island, time});
       }
     });
