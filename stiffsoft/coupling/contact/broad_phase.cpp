@@ -280,10 +280,11 @@ void primitive_pairs(const Model& model, const PrimitiveBoxes& boxes, const std:
 using Shrunk = std::array<std::vector<std::array<int, 2>>*, BroadPhase::kMostShrunk>;
 
 /// keep_overlapping() with `Levels` shrunk sets, a compile-time count: the loop over them
-/// unrolled and their counts in registers (a loop over a run-time count took half as long again).
-template <std::size_t Levels>
+/// unrolled and their counts in registers (a loop over a run-time count took half as long again);
+/// the overlapping pairs themselves kept in `out` only when `Grown`.
+template <std::size_t Levels, bool Grown>
 void keep_overlapping_in(const std::array<int, 2>* pairs, std::size_t n, const std::vector<Box>& a,
-                         const std::vector<Box>& b, std::vector<std::array<int, 2>>& out, const Shrunk& shrunk,
+                         const std::vector<Box>& b, std::vector<std::array<int, 2>>* out, const Shrunk& shrunk,
                          const std::array<double, BroadPhase::kMostShrunk>& shrink) {
   // Overlap of the shrunk boxes, x.lo + shrink ≤ y.hi − shrink, tested as an overlap of the
   // grown ones no smaller than 2·shrink less 1e-9 of it: a superset by far less than the CCD's
@@ -304,32 +305,39 @@ void keep_overlapping_in(const std::array<int, 2>* pairs, std::size_t n, const s
       // u − v ≥ 0 exactly when u ≥ v, so the overlap test is exact.
       const double overlap = std::min({y.hi[0] - x.lo[0], x.hi[0] - y.lo[0], y.hi[1] - x.lo[1], x.hi[1] - y.lo[1],
                                        y.hi[2] - x.lo[2], x.hi[2] - y.lo[2]});
-      kept[count] = pair;
-      count += overlap >= 0;
+      if constexpr (Grown) {
+        kept[count] = pair;
+        count += overlap >= 0;
+      }
       for (std::size_t l = 0; l < Levels; ++l) {
         kept_shrunk[l][shrunk_count[l]] = pair;
         shrunk_count[l] += overlap >= gap[l];
       }
     }
-    out.insert(out.end(), kept, kept + count);
+    if constexpr (Grown) out->insert(out->end(), kept, kept + count);
     for (std::size_t l = 0; l < Levels; ++l)
       shrunk[l]->insert(shrunk[l]->end(), kept_shrunk[l], kept_shrunk[l] + shrunk_count[l]);
   }
 }
 
-/// Appends to `out` the pairs (i, j) of pairs[0, n) whose boxes a[i] and b[j] overlap, in order,
-/// and to each of the first `levels` sets of `shrunk` those whose boxes still overlap shrunk by
+/// Appends to `out` (unless null) the pairs (i, j) of pairs[0, n) whose boxes a[i] and b[j] overlap, in
+/// order, and to each of the first `levels` sets of `shrunk` those whose boxes still overlap shrunk by
 /// its `shrink` on every side. Most do in a resting pile, unpredictably: each pair is written
 /// and kept only when its boxes overlap, without a branch on it, into a block on the stack (not
 /// zero-filled, unlike a resized vector) that is then appended.
 void keep_overlapping(const std::array<int, 2>* pairs, std::size_t n, const std::vector<Box>& a,
-                      const std::vector<Box>& b, std::vector<std::array<int, 2>>& out, const Shrunk& shrunk,
+                      const std::vector<Box>& b, std::vector<std::array<int, 2>>* out, const Shrunk& shrunk,
                       const std::array<double, BroadPhase::kMostShrunk>& shrink, std::size_t levels) {
   static_assert(BroadPhase::kMostShrunk == 2, "one case per count below");
+  if (!out) {
+    if (levels == 1) keep_overlapping_in<1, false>(pairs, n, a, b, out, shrunk, shrink);
+    if (levels >= 2) keep_overlapping_in<2, false>(pairs, n, a, b, out, shrunk, shrink);
+    return;
+  }
   switch (levels) {
-    case 0: keep_overlapping_in<0>(pairs, n, a, b, out, shrunk, shrink); break;
-    case 1: keep_overlapping_in<1>(pairs, n, a, b, out, shrunk, shrink); break;
-    default: keep_overlapping_in<2>(pairs, n, a, b, out, shrunk, shrink); break;
+    case 0: keep_overlapping_in<0, true>(pairs, n, a, b, out, shrunk, shrink); break;
+    case 1: keep_overlapping_in<1, true>(pairs, n, a, b, out, shrunk, shrink); break;
+    default: keep_overlapping_in<2, true>(pairs, n, a, b, out, shrunk, shrink); break;
   }
 }
 
@@ -406,23 +414,20 @@ void keep_shrunk(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::Ma
   // By chunks of pairs in parallel, gathered in order (the grown boxes' pairs are not asked for).
   using Pairs = std::vector<std::array<int, 2>>;
   constexpr std::size_t kChunk = 4096;
-  struct Found {
-    Pairs grown;
-    std::array<Pairs, BroadPhase::kMostShrunk> shrunk;
-  };
+  using Found = std::array<Pairs, BroadPhase::kMostShrunk>;
   const auto keep = [&](const Pairs& list, const std::vector<Box>& a, const std::vector<Box>& b,
                         Pairs Candidates::*set) {
     std::vector<Found> found((list.size() + kChunk - 1) / kChunk);
     tbb::parallel_for(std::size_t(0), found.size(), [&](std::size_t c) {
       const std::size_t begin = c * kChunk, end = std::min(list.size(), begin + kChunk);
       Found& f = found[c];
-      keep_overlapping(list.data() + begin, end - begin, a, b, f.grown, {&f.shrunk[0], &f.shrunk[1]}, shrink,
-                       shrunk.size());
+      for (std::size_t l = 0; l < shrunk.size(); ++l) f[l].reserve(end - begin);
+      keep_overlapping(list.data() + begin, end - begin, a, b, nullptr, {&f[0], &f[1]}, shrink, shrunk.size());
     });
     for (std::size_t l = 0; l < shrunk.size(); ++l) {
       Pairs& out = shrunk[l].out->*set;
       out.clear();
-      for (const Found& f : found) out.insert(out.end(), f.shrunk[l].begin(), f.shrunk[l].end());
+      for (const Found& f : found) out.insert(out.end(), f[l].begin(), f[l].end());
     }
   };
   keep(pairs.vertex_face, now.vertex, now.face, &Candidates::vertex_face);
@@ -499,9 +504,9 @@ Candidates BroadPhase::find(const Model& model, const Eigen::MatrixX3d& x0, cons
           refreshed[k] = 1;
         }
         const Candidates& c = p.pairs;
-        keep_overlapping(c.vertex_face.data(), c.vertex_face.size(), now.vertex, now.face, out.grown.vertex_face,
+        keep_overlapping(c.vertex_face.data(), c.vertex_face.size(), now.vertex, now.face, &out.grown.vertex_face,
                          {&out.shrunk[0].vertex_face, &out.shrunk[1].vertex_face}, shrink, shrunk.size());
-        keep_overlapping(c.edge_edge.data(), c.edge_edge.size(), now.edge, now.edge, out.grown.edge_edge,
+        keep_overlapping(c.edge_edge.data(), c.edge_edge.size(), now.edge, now.edge, &out.grown.edge_edge,
                          {&out.shrunk[0].edge_edge, &out.shrunk[1].edge_edge}, shrink, shrunk.size());
       },
       [&](const Found& part) {

@@ -63,17 +63,20 @@ Eigen::MatrixX3d Model::surface(const Eigen::VectorXd& q) const {
 }
 
 Eigen::MatrixX3d Model::surface_step(const Eigen::VectorXd& dq) const {
-  Eigen::MatrixX3d dx = Eigen::MatrixX3d::Zero(mesh.x_bar.rows(), 3);
+  Eigen::MatrixX3d dx(mesh.x_bar.rows(), 3);  // every row written below, body by body in parallel
   for_each_body(bodies.size(), [&](int b) {
     const BodyModel& body = bodies[b];
     if (body.representation == Representation::Soft) {
       for (int v = body.vertex_begin; v < body.vertex_end; ++v) {
         const int dof = nodes.dof[mesh.vertex_node[v]];
-        if (dof >= 0) dx.row(v) = dq.segment<3>(dof).transpose();
+        dx.row(v) = dof >= 0 ? Eigen::RowVector3d(dq.segment<3>(dof).transpose()) : Eigen::RowVector3d::Zero();
       }
       return;
     }
-    if (body.dof < 0) return;
+    if (body.dof < 0) {
+      dx.middleRows(body.vertex_begin, body.vertex_end - body.vertex_begin).setZero();
+      return;
+    }
     const abd::Vector12d d = dq.segment<12>(body.dof);
     const Eigen::Matrix3d dA = abd::affine_matrix(d);
     const int n = body.vertex_end - body.vertex_begin;
