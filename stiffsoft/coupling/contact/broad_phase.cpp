@@ -422,7 +422,8 @@ void keep_shrunk(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::Ma
       const std::size_t begin = c * kChunk, end = std::min(list.size(), begin + kChunk);
       Found& f = found[c];
       for (std::size_t l = 0; l < shrunk.size(); ++l) f[l].reserve(end - begin);
-      keep_overlapping(list.data() + begin, end - begin, a, b, nullptr, {&f[0], &f[1]}, shrink, shrunk.size());
+      keep_overlapping(list.data() + begin, end - begin, a, b, nullptr, {&f[0], &f[1]}, shrink,
+                       shrunk.size());
     });
     for (std::size_t l = 0; l < shrunk.size(); ++l) {
       Pairs& out = shrunk[l].out->*set;

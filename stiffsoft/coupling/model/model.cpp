@@ -69,7 +69,8 @@ Eigen::MatrixX3d Model::surface_step(const Eigen::VectorXd& dq) const {
     if (body.representation == Representation::Soft) {
       for (int v = body.vertex_begin; v < body.vertex_end; ++v) {
         const int dof = nodes.dof[mesh.vertex_node[v]];
-        dx.row(v) = dof >= 0 ? Eigen::RowVector3d(dq.segment<3>(dof).transpose()) : Eigen::RowVector3d::Zero();
+        dx.row(v) =
+            dof >= 0 ? Eigen::RowVector3d(dq.segment<3>(dof).transpose()) : Eigen::RowVector3d::Zero();
       }
       return;
     }
