@@ -71,17 +71,18 @@ PrimitiveBoxes primitive_boxes(const CollisionMesh& mesh, const Eigen::MatrixX3d
   return boxes;
 }
 
-/// The primitives in [begin, end) whose box meets `region`, keyed along `axis`, in id order.
-std::vector<Keyed> inside(const std::vector<Box>& boxes, int begin, int end, const Box& region,
-                          int axis) {
-  std::vector<Keyed> out;
+/// `out` becomes the primitives in [begin, end) whose box meets `region`, keyed along `axis`, in
+/// id order (its storage reused: a broad phase asks six times per pair of bodies).
+std::vector<Keyed>& inside(const std::vector<Box>& boxes, int begin, int end, const Box& region, int axis,
+                           std::vector<Keyed>& out) {
+  out.clear();
   for (int i = begin; i < end; ++i)
     if (boxes[i].overlaps(region)) out.push_back({boxes[i].lo[axis], boxes[i].hi[axis], i});
   return out;
 }
 
-/// The list sorted by the low end of its key, as sweep() needs it.
-std::vector<Keyed> sorted(std::vector<Keyed> list) {
+/// The list sorted in place by the low end of its key, as sweep() needs it.
+std::vector<Keyed>& sorted(std::vector<Keyed>& list) {
   std::sort(list.begin(), list.end(), [](const Keyed& a, const Keyed& b) { return a.lo < b.lo; });
   return list;
 }
@@ -252,9 +253,10 @@ void primitive_pairs(const Model& model, const PrimitiveBoxes& boxes, const std:
   const Box region = intersection(body_box[a], body_box[b]);
   int axis;
   (region.hi - region.lo).maxCoeff(&axis);
-  const auto va = inside(boxes.vertex, A.vertex_begin, A.vertex_end, region, axis);
-  const auto fa = inside(boxes.face, A.face_begin, A.face_end, region, axis);
-  const auto ea = inside(boxes.edge, A.edge_begin, A.edge_end, region, axis);
+  thread_local std::array<std::vector<Keyed>, 6> lists;  // each thread's, reused from pair to pair
+  auto& va = inside(boxes.vertex, A.vertex_begin, A.vertex_end, region, axis, lists[0]);
+  auto& fa = inside(boxes.face, A.face_begin, A.face_end, region, axis, lists[1]);
+  auto& ea = inside(boxes.edge, A.edge_begin, A.edge_end, region, axis, lists[2]);
   if (a == b) {
     // Self-contact of a soft body: every pair once, none that shares a vertex.
     grid_pairs(va, boxes.vertex, fa, boxes.face, region, [&](int v, int f) {
@@ -267,9 +269,9 @@ void primitive_pairs(const Model& model, const PrimitiveBoxes& boxes, const std:
     });
     return;
   }
-  const auto vb = sorted(inside(boxes.vertex, B.vertex_begin, B.vertex_end, region, axis));
-  const auto fb = sorted(inside(boxes.face, B.face_begin, B.face_end, region, axis));
-  const auto eb = sorted(inside(boxes.edge, B.edge_begin, B.edge_end, region, axis));
+  const auto& vb = sorted(inside(boxes.vertex, B.vertex_begin, B.vertex_end, region, axis, lists[3]));
+  const auto& fb = sorted(inside(boxes.face, B.face_begin, B.face_end, region, axis, lists[4]));
+  const auto& eb = sorted(inside(boxes.edge, B.edge_begin, B.edge_end, region, axis, lists[5]));
   sweep(sorted(va), boxes.vertex, fb, boxes.face, [&](int v, int f) { out.vertex_face.push_back({v, f}); });
   sweep(vb, boxes.vertex, sorted(fa), boxes.face, [&](int v, int f) { out.vertex_face.push_back({v, f}); });
   sweep(sorted(ea), boxes.edge, eb, boxes.edge,
