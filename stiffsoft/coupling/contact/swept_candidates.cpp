@@ -79,13 +79,7 @@ std::optional<std::vector<int>> SweptCandidates::extension(const Model& model, c
         meets_another(b, grown_segment_box(body, x0, x1), m_region))
       return std::nullopt;
   }
-  // Every vertex, body by body in parallel (all of a pile's bodies, every line-search trial).
-  std::vector<char> out(model.bodies.size());
-  for_each_item(model.bodies.size(), kBodyGrain, [&](std::size_t b) {
-    const BodyModel& body = model.bodies[b];
-    const Eigen::Index count = body.vertex_end - body.vertex_begin;
-    out[b] = count > 0 && !inside(x0, x1, body.vertex_begin, count);
-  });
+  const std::vector<char> out = bodies_out(model, x0, x1);
   std::vector<int> moved;
   std::vector<AxisBox> region = m_region;
   for (int b = 0; b < int(model.bodies.size()); ++b) {
@@ -98,6 +92,18 @@ std::optional<std::vector<int>> SweptCandidates::extension(const Model& model, c
   for (int b : moved)
     if (meets_another(b, region[std::size_t(b)], region)) return std::nullopt;
   return moved;
+}
+
+std::vector<char> SweptCandidates::bodies_out(const Model& model, const Eigen::MatrixX3d& x0,
+                                              const Eigen::MatrixX3d& x1) const {
+  // Every vertex, body by body in parallel (all of a pile's bodies, every line-search trial).
+  std::vector<char> out(model.bodies.size());
+  for_each_item(model.bodies.size(), kBodyGrain, [&](std::size_t b) {
+    const BodyModel& body = model.bodies[b];
+    const Eigen::Index count = body.vertex_end - body.vertex_begin;
+    out[b] = count > 0 && !inside(x0, x1, body.vertex_begin, count);
+  });
+  return out;
 }
 
 std::vector<double> SweptCandidates::reach_from(const Eigen::MatrixX3d& x) const {
@@ -148,12 +154,11 @@ void SweptCandidates::extend(const Model& model, const Eigen::MatrixX3d& x0, con
 bool SweptCandidates::advance(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1) {
   if (x0.rows() != m_lo.rows() || x1.rows() != m_lo.rows()) return false;
   const std::size_t most = std::max(kMostMovedBodies, model.bodies.size() / kAdvancedShare);
+  const std::vector<char> out = bodies_out(model, x0, x1);
   std::vector<int> moved;
   for (int b = 0; b < int(model.bodies.size()); ++b) {
-    const BodyModel& body = model.bodies[std::size_t(b)];
-    const Eigen::Index count = body.vertex_end - body.vertex_begin;
-    if (count == 0 || inside(x0, x1, body.vertex_begin, count)) continue;
-    if (moved.size() == most || body.self_contact()) return false;
+    if (!out[std::size_t(b)]) continue;
+    if (moved.size() == most || model.bodies[std::size_t(b)].self_contact()) return false;
     moved.push_back(b);
   }
   // The other bodies' vertices lie within the slack of their boxes, so a pair of theirs whose

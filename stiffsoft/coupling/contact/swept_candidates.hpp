@@ -84,6 +84,8 @@ class SweptCandidates {
   AxisBox grown_segment_box(const BodyModel& body, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1) const;
   /// Whether the rows [first, first + count) of x0 and x1 lie within the slack of their boxes.
   bool inside(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, Eigen::Index first, Eigen::Index count) const;
+  /// Per body, whether some vertex of it leaves the slack of its box at x0 or x1 (inside()).
+  std::vector<char> bodies_out(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1) const;
   /// Makes the moved bodies' vertices' boxes and regions those of the segment x0 → x1.
   void move_boxes(const Model& model, const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, const std::vector<int>& moved);
 
