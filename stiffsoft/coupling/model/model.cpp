@@ -38,6 +38,21 @@ template <class F>
 void for_each_body(std::size_t bodies, const F& f) {
   for_each_item(bodies, 8, [&](std::size_t b) { f(int(b)); });
 }
+
+/// Rows [first, first + n) of x become A x̄ + p of the same rows of x̄, column by column (no
+/// temporary), each entry summed as Eigen's product of x̄'s rows by Aᵀ sums it, then p added:
+/// the numbers of (x̄ Aᵀ).rowwise() + p to the bit.
+void map_rows(const Eigen::MatrixX3d& x_bar, Eigen::Index first, Eigen::Index n, const Eigen::Matrix3d& A,
+              const Eigen::Vector3d& p, Eigen::MatrixX3d& x) {
+  const double* u = x_bar.col(0).data() + first;
+  const double* v = x_bar.col(1).data() + first;
+  const double* w = x_bar.col(2).data() + first;
+  for (int j = 0; j < 3; ++j) {
+    double* out = x.col(j).data() + first;
+    const double a = A(j, 0), b = A(j, 1), c = A(j, 2), t = p(j);
+    for (Eigen::Index i = 0; i < n; ++i) out[i] = ((u[i] * a + v[i] * b) + w[i] * c) + t;
+  }
+}
 }  // namespace
 
 Eigen::MatrixX3d Model::surface(const Eigen::VectorXd& q) const {
@@ -53,11 +68,8 @@ Eigen::MatrixX3d Model::surface(const Eigen::VectorXd& q) const {
       return;
     }
     const abd::Vector12d qb = body_q(b, q);
-    const Eigen::Matrix3d A = abd::affine_matrix(qb);
-    const Eigen::RowVector3d p = abd::translation(qb).transpose();
-    const int n = body.vertex_end - body.vertex_begin;
-    x.middleRows(body.vertex_begin, n) =
-        (mesh.x_bar.middleRows(body.vertex_begin, n) * A.transpose()).rowwise() + p;
+    map_rows(mesh.x_bar, body.vertex_begin, body.vertex_end - body.vertex_begin, abd::affine_matrix(qb),
+             abd::translation(qb), x);
   });
   return x;
 }
@@ -79,11 +91,8 @@ Eigen::MatrixX3d Model::surface_step(const Eigen::VectorXd& dq) const {
       return;
     }
     const abd::Vector12d d = dq.segment<12>(body.dof);
-    const Eigen::Matrix3d dA = abd::affine_matrix(d);
-    const int n = body.vertex_end - body.vertex_begin;
-    dx.middleRows(body.vertex_begin, n) =
-        (mesh.x_bar.middleRows(body.vertex_begin, n) * dA.transpose()).rowwise() +
-        abd::translation(d).transpose();
+    map_rows(mesh.x_bar, body.vertex_begin, body.vertex_end - body.vertex_begin, abd::affine_matrix(d),
+             abd::translation(d), dx);
   });
   return dx;
 }
