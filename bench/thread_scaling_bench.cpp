@@ -48,8 +48,9 @@ Kernel products(const char* name, int count, int sweeps) {
 /// bytes read, against the products above that reuse each block twelve times.
 Kernel matrix_vector(const char* name, int count, int sweeps) {
   auto a = std::make_shared<std::vector<Matrix12d>>(count, Matrix12d::Random());
-  auto x = std::make_shared<std::vector<Eigen::Matrix<double, 12, 1>>>(count, Eigen::Matrix<double, 12, 1>::Ones());
-  auto y = std::make_shared<std::vector<Eigen::Matrix<double, 12, 1>>>(count);
+  using Vector12d = Eigen::Matrix<double, 12, 1>;
+  auto x = std::make_shared<std::vector<Vector12d>>(count, Vector12d::Ones());
+  auto y = std::make_shared<std::vector<Vector12d>>(count);
   return {name, [a, x, y, count, sweeps] {
             for (int s = 0; s < sweeps; ++s)
               tbb::parallel_for(tbb::blocked_range<int>(0, count, 32), [&](const tbb::blocked_range<int>& r) {
@@ -91,7 +92,8 @@ int main(int argc, char** argv) {
   std::printf("| kernel | 1 thread (s) | %d threads (s) | speed-up |\n|---|---|---|---|\n", threads);
   const std::vector<Kernel> kernels{products("12x12 products, 450 KiB (in cache)", 200, 3000),
                                     products("12x12 products, 4.4 MiB (streaming)", 2000, 300),
-                                    matrix_vector("12x12 matrix-vector products, 2.5 MiB", 2300, 20000), scalar_chain(60)};
+                                    matrix_vector("12x12 matrix-vector products, 2.5 MiB", 2300, 20000),
+                                    scalar_chain(60)};
   for (const Kernel& k : kernels) {
     std::vector<double> one, many;
     for (int r = 0; r < repeat; ++r) {
