@@ -13,7 +13,9 @@ namespace stiffsoft {
 
 namespace {
 
-constexpr char kTag[] = "stiffsoft checkpoint 1\n";  ///< format and version, first bytes of the file
+/// Format and version, the file's first bytes. Version 2 added the linear solver's memory
+/// (SimulationState::solver).
+constexpr char kTag[] = "stiffsoft checkpoint 2\n";
 
 /// Appends raw bytes of values (native byte order: a checkpoint is read back on the same machine).
 class Writer {
@@ -111,6 +113,8 @@ void write_checkpoint(const std::filesystem::path& file, const Checkpoint& c) {
   for (const Eigen::VectorXd* v : {&c.state.q, &c.state.qdot, &c.state.q_prev, &c.state.qdot_prev}) w.put(*v);
   w.put(c.state.kappa);
   w.put(std::uint8_t(c.state.kappa_balanced));
+  w.put(std::int64_t(c.state.solver.decided_nonzeros));
+  w.put(std::uint8_t(c.state.solver.krylov));
   w.put(c.next_frame);
   w.put(c.frames);
   w.put(c.joint_frames);
@@ -127,7 +131,8 @@ Checkpoint read_checkpoint(const std::filesystem::path& file) {
   const std::string bytes = read_bytes(file);
   const std::size_t tag = sizeof kTag - 1;
   if (bytes.compare(0, tag, kTag) != 0)
-    throw ResumeError(file.string() + ": not a stiffsoft checkpoint of this version (expected it to start with \"stiffsoft checkpoint 1\")");
+    throw ResumeError(file.string() + ": not a stiffsoft checkpoint of this version (expected it to start with \"" +
+                      std::string(kTag, tag - 1) + "\")");
   if (bytes.size() < tag + sizeof(std::uint64_t)) throw ResumeError(file.string() + ": damaged checkpoint (truncated)");
   const std::string_view body(bytes.data() + tag, bytes.size() - tag - sizeof(std::uint64_t));
   std::uint64_t checksum;
@@ -141,6 +146,8 @@ Checkpoint read_checkpoint(const std::filesystem::path& file) {
   for (Eigen::VectorXd* v : {&c.state.q, &c.state.qdot, &c.state.q_prev, &c.state.qdot_prev}) *v = r.get_vector();
   c.state.kappa = r.get<double>();
   c.state.kappa_balanced = r.get<std::uint8_t>() != 0;
+  c.state.solver.decided_nonzeros = long(r.get<std::int64_t>());
+  c.state.solver.krylov = r.get<std::uint8_t>() != 0;
   c.next_frame = r.get<double>();
   c.frames = r.get_frame_list();
   c.joint_frames = r.get_frame_list();

@@ -14,7 +14,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <optional>
+#include <stdexcept>
 #include <random>
 #include <set>
 
@@ -692,10 +694,9 @@ TEST(AutoSolver, TakesTheBlockCholeskyWhenEveryBlockIsAnAffineBody) {
   }
 }
 
-TEST(AutoSolver, KeepsTheBlockCholeskyUpToItsOwnFlopBoundThenTakesBlockCg) {
-  // 3-D lattices read as 12-blocks (four nodes each): one whose block factor costs between
-  // CHOLMOD's bound and the block Cholesky's stays direct, a larger one goes to the block
-  // Krylov method (PETSc only when there are soft nodes, TakesCholmodWhen…).
+/// 3-D lattices read as 12-blocks (four nodes each): the first whose block factor costs
+/// between CHOLMOD's bound and the block Cholesky's, and the first above the block Cholesky's.
+std::pair<Eigen::SparseMatrix<double>, Eigen::SparseMatrix<double>> lattices_around_the_block_bound() {
   std::optional<Eigen::SparseMatrix<double>> middle, above;
   for (int g = 4; g <= 20 && !above; g += 2) {
     Eigen::SparseMatrix<double> A = lattice_upper(g);
@@ -707,9 +708,16 @@ TEST(AutoSolver, KeepsTheBlockCholeskyUpToItsOwnFlopBoundThenTakesBlockCg) {
     else if (probe.factor_flops() > kAutoBlockCholeskyFlops)
       above = A;
   }
-  ASSERT_TRUE(middle && above);
-  for (const auto& [A, expected] : {std::pair{*middle, std::string("auto→block_cholesky")},
-                                    std::pair{*above, std::string("auto→block_cg")}}) {
+  if (!middle || !above) throw std::logic_error("no lattices on both sides of the block Cholesky's bound");
+  return {*middle, *above};
+}
+
+TEST(AutoSolver, KeepsTheBlockCholeskyUpToItsOwnFlopBoundThenTakesBlockCg) {
+  // The lattice below the block Cholesky's bound stays direct, the one above goes to the block
+  // Krylov method (PETSc only when there are soft nodes, TakesCholmodWhen…).
+  const auto [middle, above] = lattices_around_the_block_bound();
+  for (const auto& [A, expected] : {std::pair{middle, std::string("auto→block_cholesky")},
+                                    std::pair{above, std::string("auto→block_cg")}}) {
     AutoSolver solver;
     solver.set_relative_tolerance(1e-10);
     solver.set_block_sizes(std::vector<int>(A.rows() / 12, 12));
@@ -720,6 +728,41 @@ TEST(AutoSolver, KeepsTheBlockCholeskyUpToItsOwnFlopBoundThenTakesBlockCg) {
     EXPECT_EQ(solver.name(), expected) << A.rows() << " rows";
     EXPECT_LE((b - A.selfadjointView<Eigen::Upper>() * p).norm() / b.norm(), 1e-9);
   }
+}
+
+TEST(AutoSolver, ARestoredMemoryKeepsTheBackendAsTheUninterruptedRunHadIt) {
+  // A run that chose the block Cholesky at some pattern keeps it while the pattern stays within
+  // kAutoRedecideChange of that size, even where a fresh decision would take block_cg: a resumed
+  // run (SimulationState::solver) must choose as the uninterrupted one did (session 56: full
+  // resumed at step 250 took block_cg where the run had kept the block Cholesky, and diverged).
+  const Eigen::SparseMatrix<double> above = lattices_around_the_block_bound().second;
+  const std::vector<int> blocks(std::size_t(above.rows() / 12), 12);
+  const long nonzeros = long(above.nonZeros());
+  const auto analysed = [&](const std::optional<LinearSolverMemory>& memory) {
+    auto solver = std::make_unique<AutoSolver>();
+    solver->set_block_sizes(blocks);
+    if (memory) solver->restore_memory(*memory);
+    solver->analyze_pattern(above);
+    return solver;
+  };
+  const LinearSolverMemory kept{nonzeros * 9 / 10, false};  // chosen direct at a 10 % smaller pattern
+  EXPECT_EQ(analysed(std::nullopt)->name(), "auto→block_cg");
+  const auto resumed = analysed(kept);
+  EXPECT_EQ(resumed->name(), "auto→block_cholesky");
+  EXPECT_EQ(resumed->memory().decided_nonzeros, kept.decided_nonzeros);
+  EXPECT_FALSE(resumed->memory().krylov);
+  ASSERT_TRUE(resumed->factorize(above));
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(above.rows(), -1, 1);
+  EXPECT_LE((b - above.selfadjointView<Eigen::Upper>() * resumed->solve(b)).norm() / b.norm(), 1e-9);
+  // A memory from a pattern more than kAutoRedecideChange away is decided again.
+  const auto moved = analysed(LinearSolverMemory{nonzeros / 2, false});
+  EXPECT_EQ(moved->name(), "auto→block_cg");
+  EXPECT_EQ(moved->memory().decided_nonzeros, nonzeros);
+  EXPECT_TRUE(moved->memory().krylov);
+  // Before any analysis the memory is the one given back, so a state saved at once keeps it.
+  AutoSolver fresh;
+  fresh.restore_memory(kept);
+  EXPECT_EQ(fresh.memory().decided_nonzeros, kept.decided_nonzeros);
 }
 
 TEST(CholmodSolver, TakesTheSupernodalMethodOnlyWhereItsDenseBlocksPay) {

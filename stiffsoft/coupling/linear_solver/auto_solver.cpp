@@ -22,7 +22,32 @@ void AutoSolver::analyze_blocks(const BlockUpper& H) {
   choose(H.upper_nonzeros(), H.num_dofs(), [&](LinearSolver& s) { s.analyze_blocks(H); });
 }
 
+bool AutoSolver::affine_bodies_only(int rows) const {
+  return !m_block_sizes.empty() && std::accumulate(m_block_sizes.begin(), m_block_sizes.end(), 0) == rows &&
+         std::all_of(m_block_sizes.begin(), m_block_sizes.end(), [](int s) { return s == 12; });
+}
+
+std::unique_ptr<LinearSolver> AutoSolver::make_backend(bool krylov, int rows) const {
+  const bool blocks = affine_bodies_only(rows);
+  std::unique_ptr<LinearSolver> backend;
+  if (krylov)
+    backend = blocks ? std::unique_ptr<LinearSolver>(std::make_unique<BlockCholeskySolver>(BlockCholesky::Fill::None))
+                     : std::make_unique<PetscSolver>(default_petsc_method());
+  else
+    backend = blocks ? std::unique_ptr<LinearSolver>(std::make_unique<BlockCholeskySolver>())
+                     : std::make_unique<CholmodSolver>();
+  if (krylov && m_eta > 0) backend->set_relative_tolerance(m_eta);
+  if (!m_block_sizes.empty()) backend->set_block_sizes(m_block_sizes);
+  return backend;
+}
+
 void AutoSolver::choose(long nonzeros, int rows, const std::function<void(LinearSolver&)>& analyse) {
+  if (!m_backend && m_restored.decided_nonzeros >= 0) {  // a resumed run: its backend as it was
+    m_backend = make_backend(m_restored.krylov, rows);
+    m_krylov = m_restored.krylov;
+    m_decided_nonzeros = m_restored.decided_nonzeros;
+    m_restored = {};
+  }
   const bool redecide = !m_backend || std::abs(nonzeros - m_decided_nonzeros) >
                                           kAutoRedecideChange * double(m_decided_nonzeros);
   if (!redecide) {
@@ -30,24 +55,15 @@ void AutoSolver::choose(long nonzeros, int rows, const std::function<void(Linear
     return;
   }
   m_decided_nonzeros = nonzeros;
-  const bool affine_bodies_only =
-      !m_block_sizes.empty() && std::accumulate(m_block_sizes.begin(), m_block_sizes.end(), 0) == rows &&
-      std::all_of(m_block_sizes.begin(), m_block_sizes.end(), [](int s) { return s == 12; });
   if (rows < kAutoKrylovRows) {
-    std::unique_ptr<LinearSolver> direct;
+    std::unique_ptr<LinearSolver> direct = make_backend(false, rows);
+    analyse(*direct);
     double flops = 0, bound = kAutoCholmodFlops;
-    if (affine_bodies_only) {
+    if (auto* blocks = dynamic_cast<BlockCholeskySolver*>(direct.get())) {
       bound = kAutoBlockCholeskyFlops;
-      auto blocks = std::make_unique<BlockCholeskySolver>();
-      blocks->set_block_sizes(m_block_sizes);
-      analyse(*blocks);
       flops = blocks->factor_flops();
-      direct = std::move(blocks);
     } else {
-      auto cholmod = std::make_unique<CholmodSolver>();
-      analyse(*cholmod);
-      flops = cholmod->factor_flops();
-      direct = std::move(cholmod);
+      flops = static_cast<CholmodSolver&>(*direct).factor_flops();
     }
     if (flops <= bound) {
       m_backend = std::move(direct);  // analysed already
@@ -56,15 +72,20 @@ void AutoSolver::choose(long nonzeros, int rows, const std::function<void(Linear
     }
   }
   if (!m_krylov || !m_backend) {
-    if (affine_bodies_only)
-      m_backend = std::make_unique<BlockCholeskySolver>(BlockCholesky::Fill::None);
-    else
-      m_backend = std::make_unique<PetscSolver>(default_petsc_method());
+    m_backend = make_backend(true, rows);
     m_krylov = true;
-    if (m_eta > 0) m_backend->set_relative_tolerance(m_eta);
-    if (!m_block_sizes.empty()) m_backend->set_block_sizes(m_block_sizes);
   }
   analyse(*m_backend);
+}
+
+LinearSolverMemory AutoSolver::memory() const {
+  return m_backend ? LinearSolverMemory{m_decided_nonzeros, m_krylov} : m_restored;
+}
+
+void AutoSolver::restore_memory(const LinearSolverMemory& memory) {
+  m_backend.reset();
+  m_krylov = false;
+  m_restored = memory;
 }
 
 bool AutoSolver::factorize(const Eigen::SparseMatrix<double>& upper) {

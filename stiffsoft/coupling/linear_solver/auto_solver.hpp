@@ -71,13 +71,24 @@ class AutoSolver final : public LinearSolver {
   bool is_iterative() const override;
   /// Kept and passed on to the chosen backend.
   void set_block_sizes(const std::vector<int>& sizes) override;
+  /// The chosen backend's kind and the stored entries it was chosen at.
+  LinearSolverMemory memory() const override;
+  /// The next analysis takes the remembered kind of backend without deciding (unless the
+  /// pattern moved by more than kAutoRedecideChange from the remembered size).
+  void restore_memory(const LinearSolverMemory& memory) override;
 
  private:
   /// The decision of analyze_pattern() for a matrix of `rows` rows and `nonzeros` stored entries
   /// of its upper triangle; `analyse` has a backend analyse the matrix.
   void choose(long nonzeros, int rows, const std::function<void(LinearSolver&)>& analyse);
 
+  /// A new backend of the remembered kind for a matrix of `rows` rows, not analysed.
+  std::unique_ptr<LinearSolver> make_backend(bool krylov, int rows) const;
+  /// Whether every DOF block given by set_block_sizes() is an affine body's, over `rows` rows.
+  bool affine_bodies_only(int rows) const;
+
   std::unique_ptr<LinearSolver> m_backend;
+  LinearSolverMemory m_restored;  // restore_memory()'s choice, taken at the next analysis
   bool m_krylov = false;
   long m_decided_nonzeros = 0;  // stored entries at the last decision
   double m_eta = 0;

@@ -20,6 +20,15 @@ inline constexpr double kKrylovRelativeTolerance = 1e-8;
 /// The Krylov backends' iteration cap of one solve.
 inline constexpr int kKrylovIterationCap = 1000;
 
+/// What a solver's later choices depend on besides the systems it is given: "auto"'s backend
+/// and the pattern size it chose it at (AutoSolver keeps a choice until the pattern changes by
+/// more than kAutoRedecideChange). A resumed run gives it back (SimulationState), so that it
+/// chooses as the uninterrupted run did.
+struct LinearSolverMemory {
+  long decided_nonzeros = -1;  ///< stored entries of the pattern the backend was chosen at; −1: none chosen
+  bool krylov = false;         ///< whether the chosen backend is the Krylov one
+};
+
 /// Solves H p = b for symmetric positive (semi-)definite H given by its upper triangle
 /// (compressed sparse column, n × n, n a multiple of 3).
 ///
@@ -55,6 +64,11 @@ class LinearSolver {
   /// cutting a block. Call before analyze_pattern(); without it a backend infers the blocks
   /// from the pattern (see BlockSparsePattern). Ignored by direct backends.
   virtual void set_block_sizes(const std::vector<int>& sizes) { (void)sizes; }
+  /// The choices so far that later ones depend on (LinearSolverMemory); none by default.
+  virtual LinearSolverMemory memory() const { return {}; }
+  /// Takes `memory` from another solver of the same kind and settings as its own, before the
+  /// first analysis. Ignored by solvers without memory.
+  virtual void restore_memory(const LinearSolverMemory& memory) { (void)memory; }
   /// What the last factorize()/solve() pair did.
   const LinearSolveReport& last_report() const { return m_report; }
 

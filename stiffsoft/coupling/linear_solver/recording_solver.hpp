@@ -31,6 +31,8 @@ class RecordingSolver final : public LinearSolver {
   bool is_iterative() const override { return m_inner->is_iterative(); }
   /// Passed on.
   void set_block_sizes(const std::vector<int>& sizes) override { m_inner->set_block_sizes(sizes); }
+  LinearSolverMemory memory() const override { return m_inner->memory(); }
+  void restore_memory(const LinearSolverMemory& memory) override { m_inner->restore_memory(memory); }
 
  private:
   std::unique_ptr<LinearSolver> m_inner;

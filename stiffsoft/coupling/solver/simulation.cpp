@@ -229,7 +229,8 @@ double Simulation::friction_lag_error(const Configuration& c) {
 }
 
 SimulationState Simulation::state() const {
-  return {m_time, m_step, m_q, m_qdot, m_q_prev, m_qdot_prev, m_barrier.kappa(), m_barrier.kappa_balanced()};
+  return {m_time, m_step, m_q, m_qdot, m_q_prev, m_qdot_prev, m_barrier.kappa(), m_barrier.kappa_balanced(),
+          m_solver->memory()};
 }
 
 void Simulation::restore(const SimulationState& s) {
@@ -244,6 +245,7 @@ void Simulation::restore(const SimulationState& s) {
   m_q_prev = s.q_prev;
   m_qdot_prev = s.qdot_prev;
   m_barrier.restore_stiffness(s.kappa, s.kappa_balanced);
+  m_solver->restore_memory(s.solver);
 }
 
 Eigen::VectorXd Simulation::initial_guess(const Eigen::VectorXd& q_tilde, const Configuration& c_n) const {

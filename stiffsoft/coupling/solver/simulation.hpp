@@ -28,13 +28,14 @@
 namespace stiffsoft {
 
 /// What changes from step to step: enough for another Simulation of the same model and
-/// settings (its linear solver may differ) to continue the run exactly from here.
+/// settings to continue the run exactly from here.
 struct SimulationState {
   double time = 0;                          ///< simulated time (s)
   int step = 0;                             ///< steps taken
   Eigen::VectorXd q, qdot, q_prev, qdot_prev;  ///< DOFs and velocities now and one step back
   double kappa = 0;                         ///< the barrier's adaptive stiffness κ
   bool kappa_balanced = false;              ///< whether κ was balanced at first contact already
+  LinearSolverMemory solver;                ///< the linear solver's choices so far ("auto"'s backend)
 };
 
 /// A model advanced in time.
