@@ -260,15 +260,16 @@ void bind_simulation(py::module_& m) {
       .def_readonly("kappa", &SimulationState::kappa, "adaptive barrier stiffness")
       .def(py::pickle(
           [](const SimulationState& s) {
-            return py::make_tuple(s.time, s.step, s.q, s.qdot, s.q_prev, s.qdot_prev, s.kappa, s.kappa_balanced,
-                                  s.solver.decided_nonzeros, s.solver.krylov);
+            return py::make_tuple(s.time, s.step, s.q, s.qdot, s.q_prev, s.qdot_prev, s.kappa,
+                                  s.kappa_balanced, s.solver.decided_nonzeros, s.solver.krylov);
           },
           [](const py::tuple& t) {
             // 8 fields: a pickle from before the solver's choice was kept (the solver chooses anew).
-            if (t.size() != 10 && t.size() != 8) throw std::runtime_error("State: a pickle of 10 fields was expected");
+            if (t.size() != 10 && t.size() != 8)
+              throw std::runtime_error("State: a pickle of 10 fields was expected");
             SimulationState s{t[0].cast<double>(), t[1].cast<int>(), t[2].cast<Eigen::VectorXd>(),
                               t[3].cast<Eigen::VectorXd>(), t[4].cast<Eigen::VectorXd>(),
-                              t[5].cast<Eigen::VectorXd>(), t[6].cast<double>(), t[7].cast<bool>()};
+                              t[5].cast<Eigen::VectorXd>(), t[6].cast<double>(), t[7].cast<bool>(), {}};
             if (t.size() == 10) s.solver = {t[8].cast<long>(), t[9].cast<bool>()};
             return s;
           }));

@@ -131,7 +131,8 @@ Checkpoint read_checkpoint(const std::filesystem::path& file) {
   const std::string bytes = read_bytes(file);
   const std::size_t tag = sizeof kTag - 1;
   if (bytes.compare(0, tag, kTag) != 0)
-    throw ResumeError(file.string() + ": not a stiffsoft checkpoint of this version (expected it to start with \"" +
+    throw ResumeError(file.string() +
+                      ": not a stiffsoft checkpoint of this version (expected it to start with \"" +
                       std::string(kTag, tag - 1) + "\")");
   if (bytes.size() < tag + sizeof(std::uint64_t)) throw ResumeError(file.string() + ": damaged checkpoint (truncated)");
   const std::string_view body(bytes.data() + tag, bytes.size() - tag - sizeof(std::uint64_t));

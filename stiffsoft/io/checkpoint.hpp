@@ -1,8 +1,9 @@
 #pragma once
 /// @file `OUT/checkpoint.bin`: what `stiffsoft run --resume` needs to continue a killed run
 /// exactly: the simulation's state (SimulationState: time, step, q, q̇ and their previous
-/// values, κ, the linear solver's choice), where the recorder was (the frames listed in the .pvd files, the next frame
-/// time) and a fingerprint of the scene. Written atomically by the Recorder after a frame.
+/// values, κ, the linear solver's choice), where the recorder was (the frames listed in the
+/// .pvd files, the next frame time) and a fingerprint of the scene. Written atomically by the
+/// Recorder after a frame.
 
 #include <cstdint>
 #include <filesystem>

@@ -30,12 +30,14 @@ bool AutoSolver::affine_bodies_only(int rows) const {
 std::unique_ptr<LinearSolver> AutoSolver::make_backend(bool krylov, int rows) const {
   const bool blocks = affine_bodies_only(rows);
   std::unique_ptr<LinearSolver> backend;
-  if (krylov)
-    backend = blocks ? std::unique_ptr<LinearSolver>(std::make_unique<BlockCholeskySolver>(BlockCholesky::Fill::None))
-                     : std::make_unique<PetscSolver>(default_petsc_method());
+  if (krylov && blocks)
+    backend = std::make_unique<BlockCholeskySolver>(BlockCholesky::Fill::None);
+  else if (krylov)
+    backend = std::make_unique<PetscSolver>(default_petsc_method());
+  else if (blocks)
+    backend = std::make_unique<BlockCholeskySolver>();
   else
-    backend = blocks ? std::unique_ptr<LinearSolver>(std::make_unique<BlockCholeskySolver>())
-                     : std::make_unique<CholmodSolver>();
+    backend = std::make_unique<CholmodSolver>();
   if (krylov && m_eta > 0) backend->set_relative_tolerance(m_eta);
   if (!m_block_sizes.empty()) backend->set_block_sizes(m_block_sizes);
   return backend;
