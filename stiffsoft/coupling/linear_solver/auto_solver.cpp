@@ -44,19 +44,15 @@ std::unique_ptr<LinearSolver> AutoSolver::make_backend(bool krylov, int rows) co
 }
 
 void AutoSolver::choose(long nonzeros, int rows, const std::function<void(LinearSolver&)>& analyse) {
-  if (!m_backend && m_restored.decided_nonzeros >= 0) {  // a resumed run: its backend as it was
-    m_backend = make_backend(m_restored.krylov, rows);
-    m_krylov = m_restored.krylov;
-    m_decided_nonzeros = m_restored.decided_nonzeros;
-    m_restored = {};
-  }
-  const bool redecide = !m_backend || std::abs(nonzeros - m_decided_nonzeros) >
-                                          kAutoRedecideChange * double(m_decided_nonzeros);
+  // A choice without a backend was given back by restore_memory(): a resumed run's, as it was.
+  if (!m_backend && m_choice.decided_nonzeros >= 0) m_backend = make_backend(m_choice.krylov, rows);
+  const bool redecide = !m_backend || std::abs(nonzeros - m_choice.decided_nonzeros) >
+                                          kAutoRedecideChange * double(m_choice.decided_nonzeros);
   if (!redecide) {
     analyse(*m_backend);
     return;
   }
-  m_decided_nonzeros = nonzeros;
+  m_choice.decided_nonzeros = nonzeros;
   if (rows < kAutoKrylovRows) {
     std::unique_ptr<LinearSolver> direct = make_backend(false, rows);
     analyse(*direct);
@@ -69,25 +65,22 @@ void AutoSolver::choose(long nonzeros, int rows, const std::function<void(Linear
     }
     if (flops <= bound) {
       m_backend = std::move(direct);  // analysed already
-      m_krylov = false;
+      m_choice.krylov = false;
       return;
     }
   }
-  if (!m_krylov || !m_backend) {
+  if (!m_choice.krylov || !m_backend) {
     m_backend = make_backend(true, rows);
-    m_krylov = true;
+    m_choice.krylov = true;
   }
   analyse(*m_backend);
 }
 
-LinearSolverMemory AutoSolver::memory() const {
-  return m_backend ? LinearSolverMemory{m_decided_nonzeros, m_krylov} : m_restored;
-}
+LinearSolverMemory AutoSolver::memory() const { return m_choice; }
 
 void AutoSolver::restore_memory(const LinearSolverMemory& memory) {
   m_backend.reset();
-  m_krylov = false;
-  m_restored = memory;
+  m_choice = memory;
 }
 
 bool AutoSolver::factorize(const Eigen::SparseMatrix<double>& upper) {

@@ -88,9 +88,7 @@ class AutoSolver final : public LinearSolver {
   bool affine_bodies_only(int rows) const;
 
   std::unique_ptr<LinearSolver> m_backend;
-  LinearSolverMemory m_restored;  // restore_memory()'s choice, taken at the next analysis
-  bool m_krylov = false;
-  long m_decided_nonzeros = 0;  // stored entries at the last decision
+  LinearSolverMemory m_choice;  // the last decision: its stored entries and backend kind
   double m_eta = 0;
   std::vector<int> m_block_sizes;
 };
