@@ -1,9 +1,7 @@
 #include <stiffsoft/coupling/linear_solver/block_cholesky.hpp>
 
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/global_control.h>
 #include <tbb/parallel_for_each.h>
-#include <tbb/task_arena.h>
 
 #include <Eigen/OrderingMethods>
 #include <algorithm>
@@ -40,9 +38,7 @@ constexpr std::size_t kSerialColumns = 32;
 template <class WaitsOn, class ReleasedBy, class F>
 void for_each_when_ready(const std::vector<int>& todo, int columns, WaitsOn&& waits_on, ReleasedBy&& released_by,
                          F&& f) {
-  const bool one_thread = tbb::this_task_arena::max_concurrency() == 1 ||
-                          tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) == 1;
-  if (todo.size() < kSerialColumns || one_thread) {
+  if (todo.size() < kSerialColumns || available_threads() == 1) {
     for (int j : todo) f(j);
     return;
   }

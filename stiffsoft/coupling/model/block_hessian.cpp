@@ -20,32 +20,42 @@ BlockHessian::BlockHessian(const std::vector<DofBlock>& blocks) : m_blocks(block
 
 void BlockHessian::clear() {
   m_previous_version = pattern_version();
-  m_previous_live = m_live;
-  m_live = 0;
-  m_grew = false;
+  m_previous_live = m_live.n;
+  m_live.n = 0;
+  m_grown.n = 0;
   ++m_generation;
   // Diagonal blocks are always part of the matrix; off-diagonal ones are zeroed on their first
   // touch in the new assembly (live_slot), so untouched storage costs nothing.
   std::fill(m_pool.begin(), m_pool.begin() + std::ptrdiff_t(m_diagonal_size), 0.0);
 }
 
-BlockHessian::Slot& BlockHessian::live_slot(int row, int column) {
+BlockHessian::Slot* BlockHessian::stored_slot(int row, int column) {
   for (const RowEntry& e : m_row_slots[row]) {
     if (e.column != column) continue;
     Slot& s = m_slots[e.slot];
     if (!live(s)) {
-      m_grew = m_grew || s.generation + 1 != m_generation;
+      if (s.generation + 1 != m_generation) m_grown.raise();
       s.generation = m_generation;
       block_at(s.at, row, column).setZero();
-      ++m_live;
+      m_live.raise();
     }
-    return s;
+    return &s;
   }
+  return nullptr;
+}
+
+bool BlockHessian::stored(int i, int j) const {
+  const std::vector<RowEntry>& row = m_row_slots[i];
+  return std::any_of(row.begin(), row.end(), [&](const RowEntry& e) { return e.column == j; });
+}
+
+BlockHessian::Slot& BlockHessian::live_slot(int row, int column) {
+  if (Slot* s = stored_slot(row, column)) return *s;
   m_row_slots[row].push_back({column, int(m_slots.size())});
   m_slots.push_back({row, column, m_pool.size(), m_generation});
   m_pool.resize(m_pool.size() + std::size_t(m_blocks[row].size) * m_blocks[column].size, 0.0);
-  m_grew = true;
-  ++m_live;
+  m_grown.raise();
+  m_live.raise();
   return m_slots.back();
 }
 
@@ -83,7 +93,20 @@ void BlockHessian::add_upper(int i, int j, const double* values) {
     block_at(m_diagonal[i], i, i).triangularView<Eigen::Upper>() += ConstBlock(values, m_blocks[i].size, m_blocks[i].size);
     return;
   }
-  const std::size_t at = live_slot(i, j).at;  // first: creating a slot may move the pool
+  add_off_diagonal(live_slot(i, j).at, i, j, values);  // the slot first: creating it may move the pool
+}
+
+bool BlockHessian::add_upper_stored(int i, int j, const double* values) {
+  if (i == j) {
+    add_upper(i, j, values);
+    return true;
+  }
+  const Slot* s = stored_slot(i, j);
+  if (s) add_off_diagonal(s->at, i, j, values);
+  return s != nullptr;
+}
+
+void BlockHessian::add_off_diagonal(std::size_t at, int i, int j, const double* values) {
   if (m_blocks[i].size == 12 && m_blocks[j].size == 12) {  // two affine bodies: fixed-size code
     Eigen::Map<Eigen::Matrix<double, 12, 12>>(m_pool.data() + at) += Eigen::Map<const Eigen::Matrix<double, 12, 12>>(values);
     return;
@@ -99,14 +122,14 @@ void BlockHessian::decouple(const std::vector<char>& held) {
 std::uint64_t BlockHessian::pattern_version() const {
   // Within an assembly slots only ever join the pattern, so a pattern that is not the previous
   // one is fixed by the assembly's number and its count of live slots.
-  if (!m_grew && m_live == m_previous_live) return m_previous_version;
-  return (m_generation << 32) | m_live;
+  if (m_grown.n == 0 && m_live.n == m_previous_live) return m_previous_version;
+  return (m_generation << 32) | m_live.n;
 }
 
 std::vector<std::int64_t> BlockHessian::pattern() const {
   const std::int64_t n = num_blocks();
   std::vector<std::int64_t> keys;
-  keys.reserve(m_live);
+  keys.reserve(m_live.n);
   for (const Slot& s : m_slots)
     if (live(s)) keys.push_back(s.row * n + s.column);
   std::sort(keys.begin(), keys.end());

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -34,6 +35,12 @@ class BlockHessian {
   /// Adds the size_i × size_j column-major block stored at `values` to block (i, j), i ≤ j; of
   /// a diagonal block (i = j) only the upper triangle is read.
   void add_upper(int i, int j, const double* values);
+  /// add_upper where block (i, j) has storage already (every diagonal block has), without
+  /// creating it: false, adding nothing, where it has none. Threads may call it at once for
+  /// blocks of different rows i (owned_assembly.hpp).
+  bool add_upper_stored(int i, int j, const double* values);
+  /// Whether block (i, j), i < j, has storage (was ever part of the matrix).
+  bool stored(int i, int j) const;
   /// Zeroes every off-diagonal block in the row or column of a block with held[b] ≠ 0 (DOFs
   /// held on a prescribed motion): those blocks then decouple from the rest. The sparsity
   /// pattern stays as it was.
@@ -73,6 +80,11 @@ class BlockHessian {
   /// The slot of block (row, column), row < column, created if new; zeroed and marked live on
   /// its first touch in this assembly.
   Slot& live_slot(int row, int column);
+  /// live_slot's slot where it exists, else null (nothing created): what threads adding to
+  /// different rows may call at once.
+  Slot* stored_slot(int row, int column);
+  /// Adds `values` to the off-diagonal block at pool offset `at`, (i, j) with i < j.
+  void add_off_diagonal(std::size_t at, int i, int j, const double* values);
   /// Whether a slot is part of the current matrix.
   bool live(const Slot& s) const { return s.generation == m_generation; }
   /// The live slots by block column, each column's by ascending row: column j's are
@@ -95,8 +107,20 @@ class BlockHessian {
   };
   std::vector<std::vector<RowEntry>> m_row_slots;  // per block row: its slots, in creation order
   std::uint64_t m_generation = 1;               // the current assembly
-  std::size_t m_live = 0, m_previous_live = 0;  // live slots now / at the end of the previous assembly
-  bool m_grew = false;                          // a slot not live in the previous assembly is live now
+  /// A count that threads adding to different blocks raise at once, copied with the matrix.
+  struct SharedCount {
+    std::atomic<std::size_t> n = 0;
+    SharedCount() = default;
+    SharedCount(const SharedCount& o) : n(o.n.load()) {}
+    SharedCount& operator=(const SharedCount& o) {
+      n = o.n.load();
+      return *this;
+    }
+    void raise() { n.fetch_add(1, std::memory_order_relaxed); }
+  };
+  SharedCount m_live;                   // live slots now
+  std::size_t m_previous_live = 0;      // live slots at the end of the previous assembly
+  SharedCount m_grown;                  // slots live now and not at the end of the previous assembly
   std::uint64_t m_previous_version = 0;         // pattern_version() at the end of the previous assembly
 };
 

@@ -71,10 +71,11 @@ StencilJacobian::StencilJacobian(const Model& model, const std::array<int, 4>& v
   }
 }
 
-void StencilJacobian::scatter_gradient(const Eigen::Matrix<double, 12, 1>& g_x, Eigen::VectorXd& g) const {
+void StencilJacobian::scatter_gradient(const Eigen::Matrix<double, 12, 1>& g_x, Eigen::VectorXd& g,
+                                       const BlockOwner& owner) const {
   for (int a = 0; a < 4; ++a) {
     const int s = slot_of[a];
-    if (s < 0) continue;
+    if (s < 0 || !owner.owns(block[s])) continue;
     for (int k = 0; k < weights(columns[s]); ++k)
       for (int i = 0; i < 3; ++i) g[offset[s] + kDof[k][i]] += w[a][k] * g_x[3 * a + i];
   }

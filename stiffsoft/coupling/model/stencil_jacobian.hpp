@@ -10,15 +10,26 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <vector>
 
 #include <stiffsoft/coupling/model/block_hessian.hpp>
 #include <stiffsoft/coupling/model/model.hpp>
 
 namespace stiffsoft {
 
+/// The DOF blocks one task of an assembly adds to (owned_assembly.hpp): those `part_of` puts
+/// in part `part`, or every block where `part_of` is null.
+struct BlockOwner {
+  const std::vector<int>* part_of = nullptr;  ///< the part of each DOF block
+  int part = 0;                               ///< the task's part
+  /// Whether the task adds to block b.
+  bool owns(int b) const { return !part_of || (*part_of)[std::size_t(b)] == part; }
+};
+
 /// Jᵀ H_x J of one stencil, split into the dense blocks it adds to the global Hessian: made
-/// where the stencil's Hessian is (in parallel, chunked_assembly.hpp), added serially. Of a
-/// diagonal block (row = column) only the upper triangle counts, as in BlockHessian.
+/// where the stencil's Hessian is (in parallel, owned_assembly.hpp) and
+/// added in stencil order. Of a diagonal block (row = column) only the upper triangle counts,
+/// as in BlockHessian.
 struct StencilHessian {
   /// Entries of the largest case: a stencil spans at most two affine bodies, whose blocks
   /// (1,1), (1,2), (2,2) are 12×12 each.
@@ -46,8 +57,9 @@ struct StencilJacobian {
 
   /// J dq: the stencil's packed vertex displacement under the DOF step dq.
   Eigen::Matrix<double, 12, 1> step(const Eigen::VectorXd& dq) const;
-  /// Adds Jᵀ g_x to the global gradient g.
-  void scatter_gradient(const Eigen::Matrix<double, 12, 1>& g_x, Eigen::VectorXd& g) const;
+  /// Adds Jᵀ g_x to the global gradient g, in the segments of the blocks `owner` owns.
+  void scatter_gradient(const Eigen::Matrix<double, 12, 1>& g_x, Eigen::VectorXd& g,
+                        const BlockOwner& owner = {}) const;
   /// Jᵀ H_x J by pairs of DOF blocks, into `out`.
   void block_hessians(const Eigen::Matrix<double, 12, 12>& H_x, StencilHessian& out) const;
   /// Jᵀ (Bᵀ C B) J by pairs of DOF blocks, into `out`, for a Hessian of rank ≤ R given by its

@@ -128,13 +128,15 @@ std::vector<double> island_multiples(const std::vector<double>& bound, double al
 
 NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>& terms,
                              Eigen::VectorXd& q, LinearSolver& solver, const NewtonSettings& settings,
-                             PhaseTimes& times, const ReducedBasis* basis) {
+                             PhaseTimes& times, const ReducedBasis* basis, BlockHessian* hessian) {
   NewtonReport report;
   Eigen::MatrixX3d x = model.surface(q);
   update_all(terms, {q, x});
   double E = total_energy(terms, {q, x});
   std::optional<std::uint64_t> analysed;
-  BlockHessian H(model.blocks);  // reused: the same pattern is assembled without allocating
+  std::optional<BlockHessian> own_hessian;
+  // Reused: the same pattern is assembled without allocating.
+  BlockHessian& H = hessian ? *hessian : own_hessian.emplace(model.blocks);
   Eigen::VectorXd g(q.size()), p(q.size()), q_trial(q.size());
   double eta = 0, g_norm_previous = 0;  // Eisenstat–Walker state
   std::vector<char> held(model.blocks.size(), 0);

@@ -10,6 +10,7 @@
 #include <stiffsoft/coupling/joints/reduced_basis.hpp>
 #include <stiffsoft/coupling/linear_solver/forcing_term.hpp>
 #include <stiffsoft/coupling/linear_solver/linear_solver.hpp>
+#include <stiffsoft/coupling/model/block_hessian.hpp>
 #include <stiffsoft/coupling/model/model.hpp>
 #include <stiffsoft/coupling/solver/phase_times.hpp>
 #include <stiffsoft/coupling/solver/trial_path.hpp>
@@ -107,8 +108,13 @@ std::vector<double> island_multiples(const std::vector<double>& bound, double al
 /// along p = N dz, so every iterate keeps them (to round-off). The line search, CCD and the
 /// stopping rule are unchanged. Krylov backends are not supported with a basis (their DOF
 /// blocks do not survive the elimination): std::invalid_argument; nor are held blocks.
+///
+/// `hessian`, over model.blocks, keeps the Hessian's storage from call to call (a Simulation
+/// keeps one for its run), so that blocks stored before need not be made again (null: a new
+/// one for this call). Its contents do not change the result.
 NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>& terms,
                              Eigen::VectorXd& q, LinearSolver& solver, const NewtonSettings& settings,
-                             PhaseTimes& times, const ReducedBasis* basis = nullptr);
+                             PhaseTimes& times, const ReducedBasis* basis = nullptr,
+                             BlockHessian* hessian = nullptr);
 
 }  // namespace stiffsoft

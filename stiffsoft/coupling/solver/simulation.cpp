@@ -50,6 +50,7 @@ Simulation::Simulation(Model model, const SimulationSettings& settings)
     : m_model(std::move(model)),
       m_settings(validated(settings)),
       m_solver(make_linear_solver(linear_solver_name(m_model, settings))),
+      m_hessian(m_model.blocks),
       m_inertia(m_model, settings.kinematic_weight),
       m_orthogonality(m_model, integrator_beta(settings.integrator) * settings.h * settings.h),
       m_elasticity(m_model, integrator_beta(settings.integrator) * settings.h * settings.h),
@@ -137,8 +138,9 @@ StepStats Simulation::step() {
   ns.observer = m_newton_observer;
   Eigen::VectorXd q_new = initial_guess(q_tilde, c_n);
   const auto minimize = [&] {
-    return m_prescribed_blocks.empty() ? newton_minimize(m_model, terms, q_new, *m_solver, ns, m_times, reduced_basis())
-                                       : follow_paths(terms, q_tilde, ns, q_new);
+    return m_prescribed_blocks.empty()
+               ? newton_minimize(m_model, terms, q_new, *m_solver, ns, m_times, reduced_basis(), &m_hessian)
+               : follow_paths(terms, q_tilde, ns, q_new);
   };
   StepStats stats;
   stats.newton = minimize();
@@ -289,12 +291,12 @@ NewtonReport Simulation::follow_paths(const std::vector<EnergyTerm*>& terms, con
     // prescribed blocks alone can move there from qⁿ.
     if (path_lag(q, q_tilde).first <= 1e-12 * std::max(1.0, m_model.bounding_box_diagonal())) {
       q = on_path(q, q_tilde);
-      return newton_minimize(m_model, terms, q, *m_solver, held, m_times);
+      return newton_minimize(m_model, terms, q, *m_solver, held, m_times, nullptr, &m_hessian);
     }
     const Eigen::VectorXd q_on = on_path(m_q, q_tilde);
     if (moves_freely(m_q, q_on)) {
       q = q_on;
-      return newton_minimize(m_model, terms, q, *m_solver, held, m_times);
+      return newton_minimize(m_model, terms, q, *m_solver, held, m_times, nullptr, &m_hessian);
     }
   }
   // Something sits on the path: push it out of the way with a stiff pull, then hold.
@@ -303,7 +305,8 @@ NewtonReport Simulation::follow_paths(const std::vector<EnergyTerm*>& terms, con
   double weight = m_settings.kinematic_weight;
   for (int round = 0;; ++round, weight *= 10) {
     m_inertia.set_kinematic_weight(weight);
-    accumulate(report, newton_minimize(m_model, terms, q, *m_solver, ns, m_times, reduced_basis()));
+    accumulate(report,
+               newton_minimize(m_model, terms, q, *m_solver, ns, m_times, reduced_basis(), &m_hessian));
     const bool there = m_basis ? path_lag(q, q_tilde).first <= ns.tolerance * ns.h
                                : moves_freely(q, on_path(q, q_tilde));
     if (there) break;
@@ -315,7 +318,7 @@ NewtonReport Simulation::follow_paths(const std::vector<EnergyTerm*>& terms, con
   m_inertia.set_kinematic_weight(m_settings.kinematic_weight);
   if (m_basis) return report;
   q = on_path(q, q_tilde);
-  accumulate(report, newton_minimize(m_model, terms, q, *m_solver, held, m_times));
+  accumulate(report, newton_minimize(m_model, terms, q, *m_solver, held, m_times, nullptr, &m_hessian));
   return report;
 }
 

@@ -147,6 +147,7 @@ class Simulation {
   Model m_model;
   SimulationSettings m_settings;
   std::unique_ptr<LinearSolver> m_solver;
+  BlockHessian m_hessian;  ///< Newton's Hessian, its storage kept from step to step
   PhaseTimes m_times;
   InertiaTerm m_inertia;
   OrthogonalityTerm m_orthogonality;

@@ -18,7 +18,7 @@
 #include <stiffsoft/coupling/contact/squared_distance.hpp>
 #include <stiffsoft/coupling/contact/projected_barrier_hessian.hpp>
 #include <stiffsoft/coupling/model/stencil_jacobian.hpp>
-#include <stiffsoft/coupling/terms/chunked_assembly.hpp>
+#include <stiffsoft/coupling/terms/owned_assembly.hpp>
 
 namespace stiffsoft {
 
@@ -148,10 +148,19 @@ double BarrierTerm::value(const Configuration& c) const {
   return m_kappa * sum;
 }
 
+std::array<int, 4> BarrierTerm::stencil_blocks(size_t k) const {
+  std::array<int, 4> b;
+  for (std::size_t i = 0; i < 4; ++i) {
+    const int v = m_constraints[k].vertices[i];
+    b[i] = v < 0 ? -1 : m_vertex_block[std::size_t(v)];
+  }
+  return b;
+}
+
 void BarrierTerm::add_gradient(const Configuration& c, Eigen::VectorXd& g) const {
   const std::vector<double>* d2 = built_at(c.x) ? &squared_distances(c) : nullptr;  // as in value()
-  assemble_in_chunks<contact::Vector12d>(
-      m_constraints.size(),
+  assemble_gradient_by_owner<contact::Vector12d>(
+      int(m_model.blocks.size()), m_constraints.size(), [&](size_t k) { return stencil_blocks(k); },
       [&](size_t k, contact::Vector12d& out) {
         const ContactConstraint& s = m_constraints[k];
         const contact::Vector12d x = gather(c.x, s.vertices);
@@ -159,8 +168,8 @@ void BarrierTerm::add_gradient(const Configuration& c, Eigen::VectorXd& g) const
               (d2 ? contact::barrier_potential_gradient(s.stencil, x, (*d2)[k], m_settings.dhat)
                   : contact::barrier_potential_gradient(s.stencil, x, m_settings.dhat));
       },
-      [&](size_t k, const contact::Vector12d& out) {
-        StencilJacobian(m_model, m_constraints[k].vertices).scatter_gradient(out, g);
+      [&](size_t k, const contact::Vector12d& out, const BlockOwner& owner) {
+        StencilJacobian(m_model, m_constraints[k].vertices).scatter_gradient(out, g, owner);
       });
 }
 
@@ -179,37 +188,26 @@ void BarrierTerm::stencil_hessian(const Configuration& c, size_t k, double scale
 }
 
 void BarrierTerm::add_hessian(const Configuration& c, BlockHessian& H) const {
-  // The stencils' Hessians (their projections dominate) and their Jᵀ H J blocks run in
-  // parallel; adding the blocks to H is serial.
-  assemble_in_chunks<StencilHessian>(
-      m_constraints.size(), [&](size_t k, StencilHessian& out) { stencil_hessian(c, k, 1.0, out); },
-      [&](size_t, const StencilHessian& out) { out.add_to(H); });
+  assemble_hessian_by_owner(H, int(m_model.blocks.size()), m_constraints.size(),
+                            [&](size_t k) { return stencil_blocks(k); },
+                            [&](size_t k, StencilHessian& out) { stencil_hessian(c, k, 1.0, out); });
 }
 
 bool BarrierTerm::revise_hessian(const Configuration& c, const Eigen::VectorXd&, const Eigen::MatrixX3d& dx,
                                  BlockHessian& H) const {
   const double fraction = m_settings.release_hessian;
   if (fraction == 1.0) return false;
-  struct Revision {
-    bool released = false;
-    StencilHessian blocks;
-  };
-  bool revised = false;
   const double dhat = m_settings.dhat;
   const std::vector<double>& d2_0 = squared_distances(c);
   const std::vector<double>& d2_1 = squared_distances(c, &dx);
-  assemble_in_chunks<Revision>(
-      m_constraints.size(),
-      [&](size_t k, Revision& out) {
-        out.released = releases(std::sqrt(d2_0[k]), std::sqrt(d2_1[k]), dhat);
-        // H holds the stencil's whole Hessian: adding fraction − 1 of it leaves fraction.
-        if (out.released) stencil_hessian(c, k, fraction - 1.0, out.blocks);
-      },
-      [&](size_t, const Revision& out) {
-        if (!out.released) return;
-        out.blocks.add_to(H);
-        revised = true;
-      });
+  const std::vector<std::size_t> released = selected_items(m_constraints.size(), [&](std::size_t k) {
+    return releases(std::sqrt(d2_0[k]), std::sqrt(d2_1[k]), dhat);
+  });
+  // H holds each stencil's whole Hessian: adding fraction − 1 of it leaves fraction.
+  assemble_hessian_by_owner(
+      H, int(m_model.blocks.size()), released.size(), [&](size_t i) { return stencil_blocks(released[i]); },
+      [&](size_t i, StencilHessian& out) { stencil_hessian(c, released[i], fraction - 1.0, out); });
+  const bool revised = !released.empty();
   return revised;
 }
 

@@ -122,6 +122,8 @@ class BarrierTerm final : public EnergyTerm {
   /// The contacts at x, which m_swept covers, from its near candidates (sorted out at x first
   /// where it has none yet).
   std::vector<ContactConstraint> covered_constraints(const Eigen::MatrixX3d& x) const;
+  /// The DOF blocks of active contact k's vertices (−1 for none), in the stencil's order.
+  std::array<int, 4> stencil_blocks(size_t k) const;
   /// scale × stencil k's Newton Hessian at c, as blocks of J^T H J.
   void stencil_hessian(const Configuration& c, size_t k, double scale, StencilHessian& out) const;
   const Model& m_model;

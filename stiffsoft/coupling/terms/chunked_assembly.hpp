@@ -1,10 +1,10 @@
 #pragma once
-/// @file Assembly item by item (contact stencil, tetrahedron, affine body) in chunks: local
-/// gradients or Hessians computed in parallel into small buffers, then added to the global
-/// vector or matrix serially in item order. The sums are the same whatever the thread count
-/// (the order of addition is fixed), and the buffers stay small: one 12×12 Hessian per item
-/// for thousands of contacts or elements would be megabytes of freshly mapped memory every
-/// Newton iteration.
+/// @file Assembly item by item (the soft bodies' tetrahedra) in chunks: local gradients or
+/// Hessians computed in parallel into small buffers, then added to the global vector or matrix
+/// serially in item order. The sums are the same whatever the thread count (the order of
+/// addition is fixed), and the buffers stay small: one 12×12 Hessian per item for thousands of
+/// elements would be megabytes of freshly mapped memory every Newton iteration. (Contact and
+/// friction stencils are assembled by the owners of their blocks instead: owned_assembly.hpp.)
 ///
 /// The chunks flow through a pipeline: while one thread adds chunk k, the others already
 /// compute chunks k + 1, k + 2, …, so the serial addition overlaps the parallel work instead
@@ -23,7 +23,7 @@ namespace stiffsoft {
 /// to the global quantity, serially and in increasing k.
 template <class Local, class Compute, class Add>
 void assemble_in_chunks(std::size_t n, const Compute& compute, const Add& add) {
-  constexpr std::size_t kChunk = 32;  // 32 StencilHessians: 110 KiB
+  constexpr std::size_t kChunk = 32;  // 32 element Hessians
   if (n == 0) return;
   // Chunks in flight at once; chunk c uses buffer c mod tokens. The last stage finishes the
   // chunks in order, so chunk c + tokens enters only after chunk c has left its buffer.

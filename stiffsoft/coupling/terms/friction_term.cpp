@@ -7,7 +7,7 @@
 
 #include <stiffsoft/coupling/for_each_item.hpp>
 #include <stiffsoft/coupling/model/stencil_jacobian.hpp>
-#include <stiffsoft/coupling/terms/chunked_assembly.hpp>
+#include <stiffsoft/coupling/terms/owned_assembly.hpp>
 #include <stiffsoft/coupling/terms/ordered_sum.hpp>
 
 namespace stiffsoft {
@@ -157,17 +157,19 @@ double FrictionTerm::value(const Configuration& c) const {
 }
 
 void FrictionTerm::add_gradient(const Configuration& c, Eigen::VectorXd& g) const {
-  assemble_in_chunks<contact::Vector12d>(
-      m_stencils.size(),
+  assemble_gradient_by_owner<contact::Vector12d>(
+      int(m_model.blocks.size()), m_stencils.size(), [&](size_t k) { return m_jacobians[k].block; },
       [&](size_t k, contact::Vector12d& out) {
         out = contact::friction_potential_gradient(m_stencils[k], displacement(c, k), m_mu, m_epsv_h);
       },
-      [&](size_t k, const contact::Vector12d& out) { m_jacobians[k].scatter_gradient(out, g); });
+      [&](size_t k, const contact::Vector12d& out, const BlockOwner& owner) {
+        m_jacobians[k].scatter_gradient(out, g, owner);
+      });
 }
 
 void FrictionTerm::add_hessian(const Configuration& c, BlockHessian& H) const {
-  assemble_in_chunks<StencilHessian>(
-      m_stencils.size(),
+  assemble_hessian_by_owner(
+      H, int(m_model.blocks.size()), m_stencils.size(), [&](size_t k) { return m_jacobians[k].block; },
       [&](size_t k, StencilHessian& out) {
         // Rank ≤ 2: T is mapped through J before any 12×12 product is formed.
         const contact::Vector12d u = displacement(c, k);
@@ -175,39 +177,34 @@ void FrictionTerm::add_hessian(const Configuration& c, BlockHessian& H) const {
             m_majorized[k] ? contact::friction_majorizer_factors(m_stencils[k], u, m_mu, m_epsv_h)
                            : contact::friction_hessian_factors(m_stencils[k], u, m_mu, m_epsv_h, true);
         m_jacobians[k].low_rank_block_hessians(h.T, h.C, out);
-      },
-      [&](size_t, const StencilHessian& out) { out.add_to(H); });
+      });
 }
 
 bool FrictionTerm::revise_hessian(const Configuration& c, const Eigen::VectorXd&, const Eigen::MatrixX3d& dx,
                                   BlockHessian& H) const {
-  /// A stencil's change of model: the majorizer less the projected Hessian where the step reverses its slide.
-  struct Revision {
-    bool reversed = false;
-    StencilHessian blocks;
-  };
-  bool revised = false;
-  assemble_in_chunks<Revision>(
-      m_stencils.size(),
-      [&](size_t k, Revision& out) {
+  // The stencils whose slide the step reverses switch to their majorizer (each flag its own:
+  // the same flags whatever the thread count).
+  const std::vector<std::size_t> reversed = selected_items(m_stencils.size(), [&](std::size_t k) {
+    if (m_majorized[k] ||
+        !contact::step_reverses_slide(m_stencils[k], displacement(c, k), gather(dx, m_vertices[k]), m_epsv_h))
+      return false;
+    m_majorized[k] = 1;
+    return true;
+  });
+  // Both models are Tᵀ C T with the same T: the change is Tᵀ (C_majorizer − C) T, rank ≤ 2.
+  assemble_hessian_by_owner(
+      H, int(m_model.blocks.size()), reversed.size(),
+      [&](size_t i) { return m_jacobians[reversed[i]].block; },
+      [&](size_t i, StencilHessian& out) {
+        const size_t k = reversed[i];
         const contact::Vector12d u = displacement(c, k);
-        // Each stencil's flag is its own: the same flags whatever the thread count.
-        out.reversed = !m_majorized[k] &&
-                       contact::step_reverses_slide(m_stencils[k], u, gather(dx, m_vertices[k]), m_epsv_h);
-        if (!out.reversed) return;
-        m_majorized[k] = 1;
-        // Both models are Tᵀ C T with the same T: the change is Tᵀ (C_majorizer − C) T, rank ≤ 2.
         const contact::FrictionHessianFactors majorizer =
             contact::friction_majorizer_factors(m_stencils[k], u, m_mu, m_epsv_h);
         const contact::FrictionHessianFactors exact =
             contact::friction_hessian_factors(m_stencils[k], u, m_mu, m_epsv_h, true);
-        m_jacobians[k].low_rank_block_hessians(exact.T, Eigen::Matrix2d(majorizer.C - exact.C), out.blocks);
-      },
-      [&](size_t, const Revision& out) {
-        if (!out.reversed) return;
-        out.blocks.add_to(H);
-        revised = true;
+        m_jacobians[k].low_rank_block_hessians(exact.T, Eigen::Matrix2d(majorizer.C - exact.C), out);
       });
+  const bool revised = !reversed.empty();
   return revised;
 }
 

@@ -1,6 +1,6 @@
 #include <stiffsoft/coupling/terms/orthogonality_term.hpp>
 
-#include <stiffsoft/coupling/terms/chunked_assembly.hpp>
+#include <stiffsoft/coupling/for_each_item.hpp>
 #include <stiffsoft/coupling/terms/ordered_sum.hpp>
 #include <stiffsoft/libabd/orthogonality_potential.hpp>
 
@@ -31,12 +31,12 @@ void OrthogonalityTerm::add_gradient(const Configuration& c, Eigen::VectorXd& g)
 }
 
 void OrthogonalityTerm::add_hessian(const Configuration& c, BlockHessian& H) const {
-  assemble_in_chunks<abd::Matrix12d>(
-      m_bodies.size(),
-      [&](std::size_t k, abd::Matrix12d& out) {
-        out = abd::orthogonality_potential_hessian(c.q.segment<12>(m_bodies[k].dof), m_bodies[k].kappa_volume, 1.0, true);
-      },
-      [&](std::size_t k, const abd::Matrix12d& out) { H.add(m_bodies[k].block, m_bodies[k].block, out); });
+  // Each body its own diagonal block: threads add different ones at once.
+  for_each_item(m_bodies.size(), kBodyGrain, [&](std::size_t k) {
+    const Body& b = m_bodies[k];
+    H.add(b.block, b.block,
+          abd::orthogonality_potential_hessian(c.q.segment<12>(b.dof), b.kappa_volume, 1.0, true));
+  });
 }
 
 }  // namespace stiffsoft
