@@ -88,3 +88,32 @@ TEST(BlockHessian, DecoupleZeroesTheOffDiagonalBlocksOfHeldBlocks) {
   D.block(15, 3, 3, 12).setZero();
   EXPECT_LT((dense(H) - D).norm(), 1e-14);
 }
+
+TEST(BlockHessian, DropsTheStorageOfBlocksLongUnusedAndKeepsTheMatrixAndItsVersion) {
+  // 200 soft nodes; 10,000 couplings once (a pile's bodies that later parted), then ten.
+  std::vector<DofBlock> nodes;
+  for (int b = 0; b < 200; ++b) nodes.push_back({3 * b, 3});
+  BlockHessian H(nodes);
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> any(0, 199);
+  const Eigen::Matrix3d B = Eigen::Matrix3d::Identity();
+  while (H.stored_blocks() < 10000) {
+    const int i = any(rng), j = any(rng);
+    if (i != j) H.add(i, j, B);
+  }
+  const auto assemble_ten = [&] {
+    H.clear();
+    for (int k = 0; k < 10; ++k) H.add(k, 100 + k, double(k + 1) * B);
+  };
+  assemble_ten();
+  EXPECT_GE(H.stored_blocks(), 10000u);  // kept while they may come back
+  const std::uint64_t version = H.pattern_version();
+  assemble_ten();                        // the clear before it drops the 9,990 others
+  EXPECT_EQ(H.stored_blocks(), 10u);
+  EXPECT_EQ(H.pattern_version(), version);
+  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(600, 600);
+  for (int k = 0; k < 10; ++k) D.block(3 * k, 3 * (100 + k), 3, 3) = double(k + 1) * B;
+  EXPECT_EQ(Eigen::MatrixXd(H.upper().triangularView<Eigen::StrictlyUpper>()), D);
+  H.add(5, 7, B);  // a new coupling after the drop: stored again
+  EXPECT_EQ(H.stored_blocks(), 11u);
+}

@@ -23,10 +23,36 @@ void BlockHessian::clear() {
   m_previous_live = m_live.n;
   m_live.n = 0;
   m_grown.n = 0;
+  // Bodies that parted long ago leave their blocks' storage behind: once it outgrows the last
+  // matrix's, only that matrix's blocks keep storage.
+  constexpr std::size_t kSpareBlocks = 4096;
+  if (m_slots.size() > 2 * m_previous_live + kSpareBlocks) keep_only_live_slots();
   ++m_generation;
   // Diagonal blocks are always part of the matrix; off-diagonal ones are zeroed on their first
   // touch in the new assembly (live_slot), so untouched storage costs nothing.
   std::fill(m_pool.begin(), m_pool.begin() + std::ptrdiff_t(m_diagonal_size), 0.0);
+}
+
+void BlockHessian::keep_only_live_slots() {
+  std::vector<Slot> kept;
+  kept.reserve(m_previous_live);
+  std::size_t at = m_diagonal_size;
+  for (std::vector<RowEntry>& row : m_row_slots) {
+    std::vector<RowEntry> kept_row;
+    for (const RowEntry& e : row) {
+      const Slot& s = m_slots[std::size_t(e.slot)];
+      if (!live(s)) continue;
+      kept_row.push_back({e.column, int(kept.size())});
+      kept.push_back({s.row, s.column, at, s.generation});
+      at += std::size_t(m_blocks[s.row].size) * m_blocks[s.column].size;
+    }
+    row.swap(kept_row);
+  }
+  // The kept blocks' values need not move: each is zeroed at its first touch after clear().
+  m_slots.swap(kept);
+  std::vector<double> pool(m_pool.begin(), m_pool.begin() + std::ptrdiff_t(m_diagonal_size));
+  pool.resize(at, 0.0);
+  m_pool.swap(pool);
 }
 
 BlockHessian::Slot* BlockHessian::stored_slot(int row, int column) {

@@ -61,6 +61,9 @@ class BlockHessian {
   Eigen::VectorXd multiply(const Eigen::VectorXd& x) const;
   /// Number of blocks per side.
   int num_blocks() const { return int(m_blocks.size()); }
+  /// Off-diagonal blocks with storage: those of the current matrix and others seen before,
+  /// at most about twice the previous matrix's (clear()).
+  std::size_t stored_blocks() const { return m_slots.size(); }
 
  private:
   using Block = Eigen::Map<Eigen::MatrixXd>;
@@ -83,6 +86,9 @@ class BlockHessian {
   /// live_slot's slot where it exists, else null (nothing created): what threads adding to
   /// different rows may call at once.
   Slot* stored_slot(int row, int column);
+  /// Drops the storage of every block not live in the current assembly (called by clear()
+  /// before it starts the next one).
+  void keep_only_live_slots();
   /// Adds `values` to the off-diagonal block at pool offset `at`, (i, j) with i < j.
   void add_off_diagonal(std::size_t at, int i, int j, const double* values);
   /// Whether a slot is part of the current matrix.
