@@ -60,8 +60,6 @@ class BlockParts {
   bool serial() const { return m_parts == 1; }
   /// Number of parts.
   int count() const { return m_parts; }
-  /// Whether part p adds to DOF block b.
-  bool owns(int p, int b) const { return m_parts == 1 || m_part_of[std::size_t(b)] == p; }
   /// Part p's blocks as a BlockOwner (StencilJacobian::scatter_gradient).
   BlockOwner owner(int p) const { return m_parts == 1 ? BlockOwner{} : BlockOwner{&m_part_of, p}; }
   /// f(p, k) for every part p in parallel, and in it for every stencil k touching p's blocks,
@@ -131,9 +129,10 @@ void assemble_hessian_by_owner(BlockHessian& H, int num_blocks, std::size_t n, c
   parts.run([&](int p, std::size_t k) {
     StencilHessian out;
     compute(k, out);
+    const BlockOwner owner = parts.owner(p);
     bool stored = true;
     for (int m = 0; m < out.count; ++m)
-      if (parts.owns(p, out.row[m]))
+      if (owner.owns(out.row[m]))
         stored = H.add_upper_stored(out.row[m], out.column[m], out.values.data() + out.at[m]) && stored;
     if (!stored) unstored[std::size_t(p)].push_back(k);
   });
