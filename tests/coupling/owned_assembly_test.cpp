@@ -1,7 +1,8 @@
 // Assembly by the owners of the DOF blocks (owned_assembly.hpp) against the serial loop it
 // replaces: the same Hessian and gradient, bit for bit, on two threads, whether the Hessian's
 // blocks are new (made after the parallel pass), stored from an earlier assembly or part of
-// each, and the same pattern and version as the serial assembly's.
+// each, whatever order of the blocks cuts the parts, and the same pattern and version as the
+// serial assembly's. And the blocks' order in space that cuts them (block_order.hpp).
 #include <gtest/gtest.h>
 
 #include <tbb/global_control.h>
@@ -15,6 +16,10 @@
 #include <random>
 #include <vector>
 
+#include <limits>
+#include <numeric>
+
+#include <stiffsoft/coupling/terms/block_order.hpp>
 #include <stiffsoft/coupling/terms/owned_assembly.hpp>
 
 using namespace stiffsoft;
@@ -93,12 +98,12 @@ struct Assembled {
   Eigen::VectorXd gradient;
 };
 using Stencils = std::vector<std::array<int, 4>>;
-Assembled assemble_here(const Stencils& s, const Stencils& earlier) {
+Assembled assemble_here(const Stencils& s, const Stencils& earlier, const std::vector<int>& rank) {
   const std::vector<DofBlock> dofs = blocks();
   const int nb = int(dofs.size());
   BlockHessian H(dofs);
   const auto fill = [&](const std::vector<std::array<int, 4>>& list) {
-    assemble_hessian_by_owner(H, nb, list.size(), [&](std::size_t k) { return list[k]; },
+    assemble_hessian_by_owner(H, nb, rank, list.size(), [&](std::size_t k) { return list[k]; },
                               [&](std::size_t k, StencilHessian& out) {
                                 stencil_blocks(dofs, list[k], k, out);
                               });
@@ -109,7 +114,7 @@ Assembled assemble_here(const Stencils& s, const Stencils& earlier) {
   const int n = dofs.back().offset + dofs.back().size;
   Assembled a{H.upper(), H.pattern(), H.pattern_version(), Eigen::VectorXd::Zero(n)};
   assemble_gradient_by_owner<Eigen::Vector4d>(
-      nb, s.size(), [&](std::size_t k) { return s[k]; },
+      nb, rank, s.size(), [&](std::size_t k) { return s[k]; },
       [&](std::size_t k, Eigen::Vector4d& out) {
         out << std::cos(0.1 * double(k)), 1.0 / (1.0 + double(k)), 0.3, -0.7;
       },
@@ -121,15 +126,25 @@ Assembled assemble_here(const Stencils& s, const Stencils& earlier) {
   return a;
 }
 
-/// assemble_here in an arena of `threads` threads, whatever the machine's cores.
+/// assemble_here in an arena of `threads` threads, whatever the machine's cores, with the parts
+/// cut along `rank` (empty: the blocks' own order).
 Assembled assemble(const std::vector<std::array<int, 4>>& s, const std::vector<std::array<int, 4>>& earlier,
-                   int threads) {
+                   int threads, const std::vector<int>& rank = {}) {
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
   tbb::task_arena arena(threads);
   return arena.execute([&] {
     EXPECT_EQ(available_threads(), threads);
-    return assemble_here(s, earlier);
+    return assemble_here(s, earlier, rank);
   });
+}
+
+/// The blocks' own order, reversed and shuffled: orders the parts may be cut along.
+std::vector<std::vector<int>> block_orders(int num_blocks) {
+  std::vector<int> reversed(static_cast<std::size_t>(num_blocks));
+  std::iota(reversed.rbegin(), reversed.rend(), 0);
+  std::vector<int> shuffled = reversed;
+  std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937(7));
+  return {{}, reversed, shuffled};
 }
 
 void expect_same(const Assembled& a, const Assembled& b) {
@@ -151,11 +166,12 @@ TEST(OwnedAssembly, GivesTheSerialSumsBitForBitOnNewStoredAndMixedBlocks) {
   const std::vector<DofBlock> dofs = blocks();
   const std::vector<std::array<int, 4>> s = stencils(3000, dofs, 1);
   const std::vector<std::array<int, 4>> none, half = stencils(1500, dofs, 2);
-  for (const std::vector<std::array<int, 4>>* earlier : {&none, &s, &half}) {
-    const Assembled serial = assemble(s, *earlier, 1), parallel = assemble(s, *earlier, 2);
-    ASSERT_GT(serial.pattern.size(), 100u);
-    expect_same(serial, parallel);
-  }
+  for (const std::vector<int>& rank : block_orders(int(dofs.size())))
+    for (const std::vector<std::array<int, 4>>* earlier : {&none, &s, &half}) {
+      const Assembled serial = assemble(s, *earlier, 1), parallel = assemble(s, *earlier, 2, rank);
+      ASSERT_GT(serial.pattern.size(), 100u);
+      expect_same(serial, parallel);
+    }
 }
 
 TEST(OwnedAssembly, AddsEveryStencilOnceWhateverItsParts) {
@@ -163,7 +179,7 @@ TEST(OwnedAssembly, AddsEveryStencilOnceWhateverItsParts) {
   // matrix: none is lost where a stencil spans two parts, none added twice.
   const std::vector<DofBlock> dofs = blocks();
   const std::vector<std::array<int, 4>> s = stencils(2000, dofs, 3);
-  const Assembled a = assemble(s, {}, 2);
+  const Assembled a = assemble(s, {}, 2, block_orders(int(dofs.size())).back());
   const int n = dofs.back().offset + dofs.back().size;
   Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(n, n);
   StencilHessian out;
@@ -180,4 +196,21 @@ TEST(OwnedAssembly, AddsEveryStencilOnceWhateverItsParts) {
     }
   }
   EXPECT_LT((Eigen::MatrixXd(a.upper) - dense).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+TEST(BlockOrder, RanksTheBlocksAlongTheAxisTheirPositionsSpreadMost) {
+  // Three affine bodies and two soft nodes; positions spread 4 m along y, 1 m along x and z.
+  Model model;
+  for (int size : {12, 3, 12, 3, 12}) model.add_block(size);
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(model.num_dofs);
+  const double y[] = {2.0, -2.0, 0.5, 0.5, 1.0};
+  for (std::size_t b = 0; b < 5; ++b) {
+    const int at = model.blocks[b].offset;
+    q.segment<3>(at) << 0.2 * double(b), y[b], 1.0 - 0.2 * double(b);
+    if (model.blocks[b].size == 12) q.segment<9>(at + 3) << 9, 9, 9, 9, 9, 9, 9, 9, 9;  // A: not a position
+  }
+  EXPECT_EQ(blocks_along_widest_axis(model, q), (std::vector<int>{4, 0, 1, 2, 3}));  // tie: block order
+  q[model.blocks[1].offset + 1] = std::numeric_limits<double>::quiet_NaN();         // sorts last
+  EXPECT_EQ(blocks_along_widest_axis(model, q), (std::vector<int>{3, 4, 0, 1, 2}));
+  EXPECT_TRUE(blocks_along_widest_axis(Model{}, Eigen::VectorXd()).empty());
 }

@@ -17,7 +17,9 @@
 #include <stiffsoft/coupling/contact/ordered_chunks.hpp>
 #include <stiffsoft/coupling/contact/squared_distance.hpp>
 #include <stiffsoft/coupling/contact/projected_barrier_hessian.hpp>
+#include <stiffsoft/coupling/for_each_item.hpp>
 #include <stiffsoft/coupling/model/stencil_jacobian.hpp>
+#include <stiffsoft/coupling/terms/block_order.hpp>
 #include <stiffsoft/coupling/terms/owned_assembly.hpp>
 
 namespace stiffsoft {
@@ -99,6 +101,7 @@ void BarrierTerm::update(const Configuration& c) {
   }
   m_constraints_at = c.x;
   m_build = ++m_builds;
+  if (available_threads() > 1) m_block_rank = blocks_along_widest_axis(m_model, c.q);  // one thread: no parts
 }
 
 void BarrierTerm::sweep(const Configuration& c, const Eigen::MatrixX3d& x1) const {
@@ -160,7 +163,8 @@ std::array<int, 4> BarrierTerm::stencil_blocks(size_t k) const {
 void BarrierTerm::add_gradient(const Configuration& c, Eigen::VectorXd& g) const {
   const std::vector<double>* d2 = built_at(c.x) ? &squared_distances(c) : nullptr;  // as in value()
   assemble_gradient_by_owner<contact::Vector12d>(
-      int(m_model.blocks.size()), m_constraints.size(), [&](size_t k) { return stencil_blocks(k); },
+      int(m_model.blocks.size()), m_block_rank, m_constraints.size(),
+      [&](size_t k) { return stencil_blocks(k); },
       [&](size_t k, contact::Vector12d& out) {
         const ContactConstraint& s = m_constraints[k];
         const contact::Vector12d x = gather(c.x, s.vertices);
@@ -188,7 +192,7 @@ void BarrierTerm::stencil_hessian(const Configuration& c, size_t k, double scale
 }
 
 void BarrierTerm::add_hessian(const Configuration& c, BlockHessian& H) const {
-  assemble_hessian_by_owner(H, int(m_model.blocks.size()), m_constraints.size(),
+  assemble_hessian_by_owner(H, int(m_model.blocks.size()), m_block_rank, m_constraints.size(),
                             [&](size_t k) { return stencil_blocks(k); },
                             [&](size_t k, StencilHessian& out) { stencil_hessian(c, k, 1.0, out); });
 }
@@ -205,7 +209,8 @@ bool BarrierTerm::revise_hessian(const Configuration& c, const Eigen::VectorXd&,
   });
   // H holds each stencil's whole Hessian: adding fraction − 1 of it leaves fraction.
   assemble_hessian_by_owner(
-      H, int(m_model.blocks.size()), released.size(), [&](size_t i) { return stencil_blocks(released[i]); },
+      H, int(m_model.blocks.size()), m_block_rank, released.size(),
+      [&](size_t i) { return stencil_blocks(released[i]); },
       [&](size_t i, StencilHessian& out) { stencil_hessian(c, released[i], fraction - 1.0, out); });
   const bool revised = !released.empty();
   return revised;

@@ -159,6 +159,9 @@ class BarrierTerm final : public EnergyTerm {
   std::uint64_t m_build = 0;   ///< the number of m_constraints' build (0: none yet)
   std::array<std::uint64_t, kKeptBuilds> m_previous_build{};  ///< that of m_previous
   std::vector<int> m_vertex_block;  ///< vertex_block of each surface vertex
+  /// The DOF blocks' order in space at the last new build on two or more threads, for the
+  /// owners' parts (blocks_along_widest_axis): it shapes only who computes what.
+  std::vector<int> m_block_rank;
   /// The run's broad phase, which remembers body pairs' primitive pairs between calls.
   mutable BroadPhase m_broad_phase;
   /// Whether the kept candidates also serve the move c.x → x1 (SweptCandidates::extension)

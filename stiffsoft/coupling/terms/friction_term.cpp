@@ -7,6 +7,7 @@
 
 #include <stiffsoft/coupling/for_each_item.hpp>
 #include <stiffsoft/coupling/model/stencil_jacobian.hpp>
+#include <stiffsoft/coupling/terms/block_order.hpp>
 #include <stiffsoft/coupling/terms/owned_assembly.hpp>
 #include <stiffsoft/coupling/terms/ordered_sum.hpp>
 
@@ -36,6 +37,7 @@ void FrictionTerm::relag(const Configuration& c, const BarrierTerm& barrier) {
   m_majorized.assign(n, 0);
   m_slip.assign(n, Slip::None);
   m_jacobians.resize(n, StencilJacobian(m_model, {-1, -1, -1, -1}));  // every one set below
+  if (available_threads() > 1) m_block_rank = blocks_along_widest_axis(m_model, c.q);  // one thread: no parts
   // What normal_force_per_body made for the barrier's contacts at c (update() at c), with this κ.
   const bool made = m_made.barrier == &barrier && m_made.build == barrier.build() && m_made.build != 0 &&
                     m_made.kappa == barrier.kappa();
@@ -158,7 +160,8 @@ double FrictionTerm::value(const Configuration& c) const {
 
 void FrictionTerm::add_gradient(const Configuration& c, Eigen::VectorXd& g) const {
   assemble_gradient_by_owner<contact::Vector12d>(
-      int(m_model.blocks.size()), m_stencils.size(), [&](size_t k) { return m_jacobians[k].block; },
+      int(m_model.blocks.size()), m_block_rank, m_stencils.size(),
+      [&](size_t k) { return m_jacobians[k].block; },
       [&](size_t k, contact::Vector12d& out) {
         out = contact::friction_potential_gradient(m_stencils[k], displacement(c, k), m_mu, m_epsv_h);
       },
@@ -169,7 +172,8 @@ void FrictionTerm::add_gradient(const Configuration& c, Eigen::VectorXd& g) cons
 
 void FrictionTerm::add_hessian(const Configuration& c, BlockHessian& H) const {
   assemble_hessian_by_owner(
-      H, int(m_model.blocks.size()), m_stencils.size(), [&](size_t k) { return m_jacobians[k].block; },
+      H, int(m_model.blocks.size()), m_block_rank, m_stencils.size(),
+      [&](size_t k) { return m_jacobians[k].block; },
       [&](size_t k, StencilHessian& out) {
         // Rank ≤ 2: T is mapped through J before any 12×12 product is formed.
         const contact::Vector12d u = displacement(c, k);
@@ -193,7 +197,7 @@ bool FrictionTerm::revise_hessian(const Configuration& c, const Eigen::VectorXd&
   });
   // Both models are Tᵀ C T with the same T: the change is Tᵀ (C_majorizer − C) T, rank ≤ 2.
   assemble_hessian_by_owner(
-      H, int(m_model.blocks.size()), reversed.size(),
+      H, int(m_model.blocks.size()), m_block_rank, reversed.size(),
       [&](size_t i) { return m_jacobians[reversed[i]].block; },
       [&](size_t i, StencilHessian& out) {
         const size_t k = reversed[i];

@@ -84,6 +84,8 @@ class FrictionTerm final : public EnergyTerm {
   std::vector<std::array<int, 4>> m_vertices;
   std::vector<contact::Vector12d> m_lagged;     ///< each stencil's vertices at xⁿ
   std::vector<StencilJacobian> m_jacobians;     ///< each stencil's map from the DOFs
+  /// The DOF blocks' order in space at the lag, on two or more threads (the owners' parts).
+  std::vector<int> m_block_rank;
   /// Whether each stencil has been switched to its majorizer (revise_hessian; cleared by relag)
   mutable std::vector<char> m_majorized;
   std::vector<Slip> m_slip;  ///< each stencil's Slip at the last accepted iterate (None before the first)

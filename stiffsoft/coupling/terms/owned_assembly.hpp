@@ -1,12 +1,13 @@
 #pragma once
 /// @file Assembly of contact and friction stencils by the owners of the DOF blocks: the blocks
-/// are cut into parts of consecutive blocks, and one task per part goes through the stencils
-/// in increasing order, computing each one that touches one of its blocks and adding what
-/// falls in them (a gradient's segments; the Hessian's blocks by their row). Every entry so
-/// receives its stencils' terms in stencil order, as a serial loop adds them: the sums do not
-/// depend on the thread count. A stencil spanning two parts is computed in both, and no
-/// thread reads what another computed (chunked_assembly.hpp's serial addition does, which took
-/// this machine 1.8× its one-thread time: docs/benchmarks.md, session 57).
+/// are cut into parts (consecutive in space, block_order.hpp), and one task per part goes
+/// through the stencils in increasing order, computing each one that touches one of its blocks
+/// and adding what falls in them (a gradient's segments; the Hessian's blocks by their row).
+/// Every entry so receives its stencils' terms in stencil order, as a serial loop adds them:
+/// the sums depend neither on the thread count nor on the cut. A stencil spanning two parts is
+/// computed in both, and no thread reads what another computed (chunked_assembly.hpp's serial
+/// addition does, which took this machine 1.8× its one-thread time: docs/benchmarks.md,
+/// session 57).
 
 #include <tbb/parallel_for.h>
 
@@ -22,32 +23,39 @@
 namespace stiffsoft {
 
 /// The parts of one assembly over n stencils: one per thread of the arena (one, a serial
-/// assembly, with one thread or few stencils), cut between consecutive DOF blocks where about
-/// equally many stencils have their largest block below. blocks(k) gives stencil k's DOF
-/// blocks (an iterable of ints, −1 for none).
+/// assembly, with one thread or few stencils), cut between consecutive DOF blocks of the order
+/// `rank` gives (rank[b]: block b's place; empty: the blocks' own order) where about equally
+/// many stencils have their last block below. blocks(k) gives stencil k's DOF blocks (an
+/// iterable of ints, −1 for none). Any cut gives the same sums; one that few stencils span
+/// (block_order.hpp) gives each thread less to compute twice.
 class BlockParts {
  public:
   /// The parts for n stencils over num_blocks DOF blocks.
   template <class Blocks>
-  BlockParts(int num_blocks, std::size_t n, const Blocks& blocks) : m_n(n) {
+  BlockParts(int num_blocks, std::size_t n, const Blocks& blocks, const std::vector<int>& rank = {})
+      : m_n(n) {
     constexpr std::size_t kSerialBelow = 256;  // stencils
     constexpr std::size_t kSample = 8;         // every kSample-th stencil counted for the cut
     m_parts = n < kSerialBelow ? 1 : std::min(32, available_threads());
     if (m_parts == 1) return;
-    std::vector<std::int64_t> per_block(static_cast<std::size_t>(num_blocks), 0);
+    const auto place = [&](int b) { return rank.empty() ? b : rank[std::size_t(b)]; };
+    std::vector<std::int64_t> per_place(static_cast<std::size_t>(num_blocks), 0);
     std::int64_t counted = 0;
     for (std::size_t k = 0; k < n; k += kSample) {
-      int largest = -1;
-      for (int b : blocks(k)) largest = std::max(largest, b);
-      if (largest >= 0) ++per_block[std::size_t(largest)], ++counted;
+      int last = -1;
+      for (int b : blocks(k))
+        if (b >= 0) last = std::max(last, place(b));
+      if (last >= 0) ++per_place[std::size_t(last)], ++counted;
     }
-    m_part_of.resize(static_cast<std::size_t>(num_blocks));
+    std::vector<int> part_of_place(static_cast<std::size_t>(num_blocks));
     std::int64_t seen = 0;
-    for (int b = 0, part = 0; b < num_blocks; ++b) {
-      m_part_of[std::size_t(b)] = part;
-      seen += per_block[std::size_t(b)];
+    for (int r = 0, part = 0; r < num_blocks; ++r) {
+      part_of_place[std::size_t(r)] = part;
+      seen += per_place[std::size_t(r)];
       if (part + 1 < m_parts && seen * m_parts >= (part + 1) * counted) ++part;
     }
+    m_part_of.resize(static_cast<std::size_t>(num_blocks));
+    for (int b = 0; b < num_blocks; ++b) m_part_of[std::size_t(b)] = part_of_place[std::size_t(place(b))];
     m_mask.resize(n);
     for_each_item(n, 1024, [&](std::size_t k) {
       std::uint32_t m = 0;
@@ -98,11 +106,12 @@ std::vector<std::size_t> selected_items(std::size_t n, const Pred& pred) {
 }
 
 /// Adds Σ_k Jₖᵀ gₖ to g: compute(k, out) makes stencil k's 12-vector, scatter(k, out, owner)
-/// adds it to the segments of the blocks `owner` owns.
+/// adds it to the segments of the blocks `owner` owns. The parts follow the blocks' `rank`
+/// (BlockParts).
 template <class Local, class Blocks, class Compute, class Scatter>
-void assemble_gradient_by_owner(int num_blocks, std::size_t n, const Blocks& blocks, const Compute& compute,
-                                const Scatter& scatter) {
-  const BlockParts parts(num_blocks, n, blocks);
+void assemble_gradient_by_owner(int num_blocks, const std::vector<int>& rank, std::size_t n,
+                                const Blocks& blocks, const Compute& compute, const Scatter& scatter) {
+  const BlockParts parts(num_blocks, n, blocks, rank);
   parts.run([&](int p, std::size_t k) {
     Local out;
     compute(k, out);
@@ -112,11 +121,12 @@ void assemble_gradient_by_owner(int num_blocks, std::size_t n, const Blocks& blo
 
 /// Adds Σ_k Jₖᵀ Hₖ Jₖ to H: compute(k, out) makes stencil k's blocks. A block with no storage
 /// in H yet (its pair of DOF blocks never coupled before in the run) is made afterwards, in
-/// stencil order, and then gets its stencils' terms, in stencil order.
+/// stencil order, and then gets its stencils' terms, in stencil order. The parts follow the
+/// blocks' `rank` (BlockParts).
 template <class Blocks, class Compute>
-void assemble_hessian_by_owner(BlockHessian& H, int num_blocks, std::size_t n, const Blocks& blocks,
-                               const Compute& compute) {
-  const BlockParts parts(num_blocks, n, blocks);
+void assemble_hessian_by_owner(BlockHessian& H, int num_blocks, const std::vector<int>& rank, std::size_t n,
+                               const Blocks& blocks, const Compute& compute) {
+  const BlockParts parts(num_blocks, n, blocks, rank);
   if (parts.serial()) {
     StencilHessian out;
     for (std::size_t k = 0; k < n; ++k) {
