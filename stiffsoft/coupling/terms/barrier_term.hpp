@@ -101,6 +101,9 @@ class BarrierTerm final : public EnergyTerm {
   }
   /// Active contacts at the last update.
   const std::vector<ContactConstraint>& constraints() const { return m_constraints; }
+  /// The DOF blocks' order in space for the owners' parts (blocks_along_widest_axis, at the
+  /// last new build on two or more threads; empty before): friction's assembly cuts it too.
+  const std::vector<int>& block_rank() const { return m_block_rank; }
   /// The number of the build constraints() come from: equal numbers, the same contacts at the
   /// same surface (a surface built again, or taken back from the kept builds, keeps its number).
   std::uint64_t build() const { return m_build; }

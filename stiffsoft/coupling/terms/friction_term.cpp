@@ -7,7 +7,6 @@
 
 #include <stiffsoft/coupling/for_each_item.hpp>
 #include <stiffsoft/coupling/model/stencil_jacobian.hpp>
-#include <stiffsoft/coupling/terms/block_order.hpp>
 #include <stiffsoft/coupling/terms/owned_assembly.hpp>
 #include <stiffsoft/coupling/terms/ordered_sum.hpp>
 
@@ -37,7 +36,7 @@ void FrictionTerm::relag(const Configuration& c, const BarrierTerm& barrier) {
   m_majorized.assign(n, 0);
   m_slip.assign(n, Slip::None);
   m_jacobians.resize(n, StencilJacobian(m_model, {-1, -1, -1, -1}));  // every one set below
-  if (available_threads() > 1) m_block_rank = blocks_along_widest_axis(m_model, c.q);  // one thread: no parts
+  m_block_rank = barrier.block_rank();  // ranked where the barrier built these contacts
   // What normal_force_per_body made for the barrier's contacts at c (update() at c), with this κ.
   const bool made = m_made.barrier == &barrier && m_made.build == barrier.build() && m_made.build != 0 &&
                     m_made.kappa == barrier.kappa();

@@ -84,7 +84,7 @@ class FrictionTerm final : public EnergyTerm {
   std::vector<std::array<int, 4>> m_vertices;
   std::vector<contact::Vector12d> m_lagged;     ///< each stencil's vertices at xⁿ
   std::vector<StencilJacobian> m_jacobians;     ///< each stencil's map from the DOFs
-  /// The DOF blocks' order in space at the lag, on two or more threads (the owners' parts).
+  /// The barrier's block_rank() at the lag: the owners' parts of friction's assembly.
   std::vector<int> m_block_rank;
   /// Whether each stencil has been switched to its majorizer (revise_hessian; cleared by relag)
   mutable std::vector<char> m_majorized;
