@@ -29,7 +29,8 @@ const std::vector<std::string>& body_state_columns() {
   return columns;
 }
 
-BodyStateWriter::BodyStateWriter(std::filesystem::path file) : file_(std::move(file)) {}
+BodyStateWriter::BodyStateWriter(std::filesystem::path file, std::size_t pending_bytes)
+    : file_(std::move(file)), pending_bytes_(pending_bytes) {}
 
 BodyStateWriter::~BodyStateWriter() {
   if (!dirty_) return;
@@ -103,6 +104,7 @@ void BodyStateWriter::add_state(int step, const Simulation& sim) {
     rows_ += '\n';
   }
   dirty_ = true;
+  if (rows_.size() >= pending_bytes_) flush();
 }
 
 void BodyStateWriter::reload(const CsvEnd& end) {

@@ -2,6 +2,7 @@
 /// @file `OUT/bodies.csv`: every body's state after every step (and at t = 0), for studies
 /// and plots that need a body's position, orientation or velocity at a time.
 
+#include <cstddef>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -20,21 +21,30 @@ namespace stiffsoft {
 ///   w and A are written as nan, kinetic energy Σ ½ mᵢ |vᵢ|² (J).
 /// - fc, ff: the sum of the contact (barrier) and friction forces on the body's surface
 ///   vertices (N).
-/// Rows are kept in memory until flush() (and destruction): the first flush writes the file
-/// atomically (stiffsoft/io/atomic_file.hpp), later ones append the new rows in one write, so a
-/// long run's file is never rewritten. A process killed during an append can leave a partial
+/// Rows are kept in memory until flush() (and destruction), or until they reach the writer's
+/// bound (kBodyRowsPendingBytes), when add_state() flushes them itself: a run with few frames
+/// (a large output.frame_dt) holds at most that much, not every row since its last frame. The
+/// first flush writes the file atomically (stiffsoft/io/atomic_file.hpp), later ones append the
+/// new rows in one write, so a long run's file is never rewritten. A process killed during an append can leave a partial
 /// last line; a resumed run (reload()) keeps whole rows only, cutting the file after them at
 /// its first flush, so that resuming reads and holds none of the rows it keeps.
 class BodyStateWriter {
  public:
-  /// `file`: the .csv to (re)write; its folder must exist. Nothing is written before flush().
-  explicit BodyStateWriter(std::filesystem::path file);
+  /// Bytes of rows held in memory before add_state() appends them to the file: 4 MiB, about 20
+  /// steps of the 562-body pile `full`. Held longer, a run without frames grew by its rows
+  /// (0.6 MB a step there), and each growth of the buffer touched fresh pages (15 µs a page fault
+  /// on this project's machine; docs/benchmarks.md, session 59).
+  static constexpr std::size_t kBodyRowsPendingBytes = std::size_t(4) << 20;
+  /// `file`: the .csv to (re)write; its folder must exist. Nothing is written before flush() or
+  /// before the rows held reach `pending_bytes`.
+  explicit BodyStateWriter(std::filesystem::path file, std::size_t pending_bytes = kBodyRowsPendingBytes);
   /// Flushes unless nothing changed; errors go to stderr (destructors must not throw).
   ~BodyStateWriter();
   BodyStateWriter(const BodyStateWriter&) = delete;             ///< one writer per file
   BodyStateWriter& operator=(const BodyStateWriter&) = delete;  ///< one writer per file
 
-  /// Appends one row per body of `sim` for step number `step` (0: the initial state).
+  /// Appends one row per body of `sim` for step number `step` (0: the initial state); flushes
+  /// when the rows held reach the bound (throwing as flush() does).
   void add_state(int step, const Simulation& sim);
   /// Puts every row so far on disk (header and rows the first time, then appending); throws
   /// std::runtime_error naming the file on I/O failure.
@@ -46,6 +56,7 @@ class BodyStateWriter {
 
  private:
   std::filesystem::path file_;  ///< the .csv
+  std::size_t pending_bytes_;   ///< rows held before add_state() flushes them
   std::string rows_;            ///< rows not yet on disk, '\n'-terminated
   bool on_disk_ = false;        ///< the file holds the header and the rows flushed so far
   std::uintmax_t kept_ = 0;     ///< a resumed run's bytes to keep (reload()), cut at the next flush

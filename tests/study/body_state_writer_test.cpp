@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include <stiffsoft/io/body_state_writer.hpp>
@@ -78,4 +79,32 @@ TEST(BodyStateWriter, WritesPositionRotationVelocitiesAndEnergy) {
     EXPECT_DOUBLE_EQ(col(row, "fcy"), 0.0);  // no contact
   }
   EXPECT_DOUBLE_EQ(col(rows[21], "time"), 0.1);
+}
+
+// Rows reach the file without a flush once they reach the writer's bound, so a run with few
+// frames does not hold every row since its last frame; below the bound nothing is written.
+TEST(BodyStateWriter, AppendsItsRowsItselfOnceTheyReachItsBound) {
+  const std::string json = R"({"description": "falling box", "time": {"dt": 0.01},
+    "bodies": [{"name": "box", "mesh": {"primitive": "box", "size": [1, 0.5, 0.1]}}]})";
+  SceneSimulation run = make_simulation(load_scene_from_string(json, STIFFSOFT_SOURCE_DIR, "box.json", "box"), "box.json");
+  Simulation& sim = run.simulation;
+  const auto dir = stiffsoft::testing::temporary_folder("bodies_csv_bound");
+  const auto rows_on_disk = [&](const std::filesystem::path& file) {
+    std::vector<std::string> header;
+    return std::filesystem::exists(file) ? read_rows(file, header).size() : std::size_t(0);
+  };
+  BodyStateWriter held(dir / "held.csv");  // the default bound: megabytes
+  BodyStateWriter bounded(dir / "bounded.csv", 1);  // every state reaches it
+  for (int step = 0; step < 3; ++step) {
+    if (step > 0) sim.step();
+    held.add_state(step, sim);
+    bounded.add_state(step, sim);
+    EXPECT_FALSE(std::filesystem::exists(dir / "held.csv"));
+    EXPECT_EQ(rows_on_disk(dir / "bounded.csv"), std::size_t(step + 1)) << "after step " << step;
+  }
+  held.flush();
+  EXPECT_EQ(rows_on_disk(dir / "held.csv"), 3u);
+  std::ifstream a(dir / "held.csv"), b(dir / "bounded.csv");
+  const std::string held_text((std::istreambuf_iterator<char>(a)), {}), bounded_text((std::istreambuf_iterator<char>(b)), {});
+  EXPECT_EQ(held_text, bounded_text);  // the same file, however it was written
 }
