@@ -25,15 +25,16 @@ namespace stiffsoft {
 /// bound (kBodyRowsPendingBytes), when add_state() flushes them itself: a run with few frames
 /// (a large output.frame_dt) holds at most that much, not every row since its last frame. The
 /// first flush writes the file atomically (stiffsoft/io/atomic_file.hpp), later ones append the
-/// new rows in one write, so a long run's file is never rewritten. A process killed during an append can leave a partial
-/// last line; a resumed run (reload()) keeps whole rows only, cutting the file after them at
-/// its first flush, so that resuming reads and holds none of the rows it keeps.
+/// new rows in one write, so a long run's file is never rewritten. A process killed during an
+/// append can leave a partial last line; a resumed run (reload()) keeps whole rows only,
+/// cutting the file after them at its first flush, so that resuming reads and holds none of
+/// the rows it keeps.
 class BodyStateWriter {
  public:
-  /// Bytes of rows held in memory before add_state() appends them to the file: 4 MiB, about 20
-  /// steps of the 562-body pile `full`. Held longer, a run without frames grew by its rows
-  /// (0.6 MB a step there), and each growth of the buffer touched fresh pages (15 µs a page fault
-  /// on this project's machine; docs/benchmarks.md, session 59).
+  /// Bytes of rows held in memory before add_state() appends them to the file: 4 MiB, about 14
+  /// steps of the 562-body pile `full` (290 kB a step). Held until the next frame, a run without
+  /// frames grew by 0.6 MB a step there, each growth of the buffer touching fresh pages (15 µs a
+  /// page fault on this project's machine; docs/benchmarks.md, "Memory of a long run").
   static constexpr std::size_t kBodyRowsPendingBytes = std::size_t(4) << 20;
   /// `file`: the .csv to (re)write; its folder must exist. Nothing is written before flush() or
   /// before the rows held reach `pending_bytes`.

@@ -86,7 +86,8 @@ TEST(BodyStateWriter, WritesPositionRotationVelocitiesAndEnergy) {
 TEST(BodyStateWriter, AppendsItsRowsItselfOnceTheyReachItsBound) {
   const std::string json = R"({"description": "falling box", "time": {"dt": 0.01},
     "bodies": [{"name": "box", "mesh": {"primitive": "box", "size": [1, 0.5, 0.1]}}]})";
-  SceneSimulation run = make_simulation(load_scene_from_string(json, STIFFSOFT_SOURCE_DIR, "box.json", "box"), "box.json");
+  SceneSimulation run =
+      make_simulation(load_scene_from_string(json, STIFFSOFT_SOURCE_DIR, "box.json", "box"), "box.json");
   Simulation& sim = run.simulation;
   const auto dir = stiffsoft::testing::temporary_folder("bodies_csv_bound");
   const auto rows_on_disk = [&](const std::filesystem::path& file) {
@@ -104,7 +105,9 @@ TEST(BodyStateWriter, AppendsItsRowsItselfOnceTheyReachItsBound) {
   }
   held.flush();
   EXPECT_EQ(rows_on_disk(dir / "held.csv"), 3u);
-  std::ifstream a(dir / "held.csv"), b(dir / "bounded.csv");
-  const std::string held_text((std::istreambuf_iterator<char>(a)), {}), bounded_text((std::istreambuf_iterator<char>(b)), {});
-  EXPECT_EQ(held_text, bounded_text);  // the same file, however it was written
+  const auto text = [](const std::filesystem::path& file) {
+    std::ifstream in(file);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_EQ(text(dir / "held.csv"), text(dir / "bounded.csv"));  // the same file, however it was written
 }
