@@ -7,7 +7,6 @@
 #include <limits>
 #include <stdexcept>
 
-#include <stiffsoft/io/atomic_file.hpp>
 
 namespace stiffsoft {
 
@@ -30,7 +29,7 @@ const std::vector<std::string>& body_state_columns() {
 }
 
 BodyStateWriter::BodyStateWriter(std::filesystem::path file, std::size_t pending_bytes)
-    : file_(std::move(file)), pending_bytes_(pending_bytes) {}
+    : csv_(std::move(file), body_state_columns()), pending_bytes_(pending_bytes) {}
 
 BodyStateWriter::~BodyStateWriter() {
   if (!dirty_) return;
@@ -109,31 +108,12 @@ void BodyStateWriter::add_state(int step, const Simulation& sim) {
 
 void BodyStateWriter::reload(const CsvEnd& end) {
   rows_.clear();
-  kept_ = end.length;
-  on_disk_ = false;  // the next flush cuts the file after these rows
+  csv_.keep(end.length);
   dirty_ = true;
 }
 
 void BodyStateWriter::flush() {
-  if (!on_disk_ && kept_ > 0) {
-    std::error_code error;
-    std::filesystem::resize_file(file_, kept_, error);
-    if (error) throw std::runtime_error("cannot cut " + file_.string() + " to its resumed rows: " + error.message());
-    on_disk_ = true;
-  }
-  if (!on_disk_) {
-    write_file_atomically(file_, [&](std::ostream& out) {
-      const auto& columns = body_state_columns();
-      for (std::size_t i = 0; i < columns.size(); ++i) out << (i > 0 ? "," : "") << columns[i];
-      out << '\n' << rows_;
-    });
-    on_disk_ = true;
-  } else if (!rows_.empty()) {
-    std::ofstream out(file_, std::ios::binary | std::ios::app);
-    out.write(rows_.data(), std::streamsize(rows_.size()));
-    out.close();
-    if (!out) throw std::runtime_error("cannot append to " + file_.string());
-  }
+  csv_.write(rows_);
   rows_.clear();
   dirty_ = false;
 }

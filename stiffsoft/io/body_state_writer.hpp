@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <stiffsoft/coupling/solver/simulation.hpp>
+#include <stiffsoft/io/appended_csv.hpp>
 #include <stiffsoft/io/csv_rows.hpp>
 
 namespace stiffsoft {
@@ -24,10 +25,8 @@ namespace stiffsoft {
 /// Rows are kept in memory until flush() (and destruction), or until they reach the writer's
 /// bound (kBodyRowsPendingBytes), when add_state() flushes them itself: a run with few frames
 /// (a large output.frame_dt) holds at most that much, not every row since its last frame. The
-/// first flush writes the file atomically (stiffsoft/io/atomic_file.hpp), later ones append the
-/// new rows in one write, so a long run's file is never rewritten. A process killed during an
-/// append can leave a partial last line; a resumed run (reload()) keeps whole rows only,
-/// cutting the file after them at its first flush, so that resuming reads and holds none of
+/// file is written whole once and then appended (AppendedCsv); a resumed run (reload()) cuts
+/// it after the checkpoint's rows at its first flush, so that resuming reads and holds none of
 /// the rows it keeps.
 class BodyStateWriter {
  public:
@@ -56,11 +55,9 @@ class BodyStateWriter {
   void reload(const CsvEnd& end);
 
  private:
-  std::filesystem::path file_;  ///< the .csv
+  AppendedCsv csv_;             ///< the .csv on disk
   std::size_t pending_bytes_;   ///< rows held before add_state() flushes them
   std::string rows_;            ///< rows not yet on disk, '\n'-terminated
-  bool on_disk_ = false;        ///< the file holds the header and the rows flushed so far
-  std::uintmax_t kept_ = 0;     ///< a resumed run's bytes to keep (reload()), cut at the next flush
   bool dirty_ = true;           ///< rows (or the header) not yet on disk
 };
 

@@ -13,13 +13,6 @@ namespace {
 /// Bytes read at a time from a file's end.
 constexpr std::uintmax_t kBlock = 1 << 20;
 
-/// The header line the writer of `columns` puts first, '\n' included.
-std::string header_line(const std::vector<std::string>& columns) {
-  std::string header;
-  for (std::size_t i = 0; i < columns.size(); ++i) header += (i ? "," : "") + columns[i];
-  return header + '\n';
-}
-
 /// `file`, open for reading, after checking that it starts with `header`.
 std::ifstream checked_file(const std::filesystem::path& file, const std::string& header) {
   std::ifstream in(file, std::ios::binary);
@@ -38,8 +31,14 @@ bool step_of(const char* begin, const char* end, int& step) {
 
 }  // namespace
 
+std::string csv_header_line(const std::vector<std::string>& columns) {
+  std::string header;
+  for (std::size_t i = 0; i < columns.size(); ++i) header += (i ? "," : "") + columns[i];
+  return header + '\n';
+}
+
 CsvEnd csv_end_through_step(const std::filesystem::path& file, const std::vector<std::string>& columns, int last_step) {
-  const std::string header = header_line(columns);
+  const std::string header = csv_header_line(columns);
   std::ifstream in = checked_file(file, header);
   const std::uintmax_t first = header.size(), size = std::filesystem::file_size(file);
   // `text` holds the file's bytes [from, to): the lines not yet looked at, the last one cut
@@ -80,19 +79,5 @@ CsvEnd csv_end_through_step(const std::filesystem::path& file, const std::vector
   }
 }
 
-CsvRows csv_rows_through_step(const std::filesystem::path& file, const std::vector<std::string>& columns, int last_step) {
-  const CsvEnd end = csv_end_through_step(file, columns, last_step);
-  const std::size_t first = header_line(columns).size();
-  std::ifstream in(file, std::ios::binary);
-  CsvRows rows;
-  rows.text.resize(std::size_t(end.length) - first);
-  in.seekg(std::streamoff(first));
-  in.read(rows.text.data(), std::streamsize(rows.text.size()));
-  if (std::size_t(in.gcount()) != rows.text.size())
-    throw ResumeError(file.string() + ": cannot be read, so the run cannot be resumed");
-  rows.count = std::size_t(std::count(rows.text.begin(), rows.text.end(), '\n'));
-  rows.last_step = end.last_step;
-  return rows;
-}
 
 }  // namespace stiffsoft

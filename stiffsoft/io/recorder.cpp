@@ -65,8 +65,8 @@ Recorder::ResumeCheck Recorder::checked_resume(const std::filesystem::path& out,
     throw ResumeError(out.string() + ": the scene (its settings or a mesh file) changed since the checkpoint; " +
                       "run it again without --resume, into a new folder");
   const int step = checkpoint.state.step;
-  // stats.csv and bodies.csv must reach the checkpoint's step; bodies.csv, a long run's
-  // largest file, is read only back from its end.
+  // stats.csv and bodies.csv must reach the checkpoint's step; each file is read only back
+  // from its end.
   const auto reaching_step = [&](const std::filesystem::path& file, auto rows) {
     if (rows.last_step != step)
       throw ResumeError(file.string() + ": holds steps up to " + std::to_string(rows.last_step) +
@@ -74,10 +74,10 @@ Recorder::ResumeCheck Recorder::checked_resume(const std::filesystem::path& out,
     return rows;
   };
   ResumeCheck check{fingerprint,
-                    reaching_step(out / "stats.csv", csv_rows_through_step(out / "stats.csv", step_stats_column_names(), step)),
+                    reaching_step(out / "stats.csv", csv_end_through_step(out / "stats.csv", step_stats_column_names(), step)),
                     reaching_step(out / "bodies.csv", csv_end_through_step(out / "bodies.csv", body_state_columns(), step)),
                     std::nullopt};
-  if (!scene.joints.empty()) check.joints = csv_rows_through_step(out / "joints.csv", joint_columns(), step);
+  if (!scene.joints.empty()) check.joints = csv_end_through_step(out / "joints.csv", joint_columns(), step);
   return check;
 }
 
@@ -99,11 +99,11 @@ Recorder::Recorder(const std::filesystem::path& out, const SceneDescription& sce
       m_bodies(out / "bodies.csv") {
   if (sim.time() != 0) throw std::invalid_argument("Recorder: a run is resumed into a simulation at t = 0");
   remove_stale_temporaries(out);  // a killed writer's half-written files
-  m_stats.reload(std::move(check.stats));
+  m_stats.reload(check.stats);
   m_bodies.reload(check.bodies);
   if (check.joints) {
     m_joints.emplace(out / "joints.csv", joint_columns());
-    m_joints->reload(std::move(*check.joints));
+    m_joints->reload(*check.joints);
     m_joint_frames.emplace(out, scene.name);
     m_joint_frames->continue_from(checkpoint.joint_frames);
   }

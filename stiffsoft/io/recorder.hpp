@@ -73,16 +73,17 @@ class Recorder {
 
  private:
   /// What a resume reads and checks before anything in the folder is touched (the writers,
-  /// which rewrite their files when destroyed, do not exist yet): the scene's fingerprint and
-  /// the CSV files' rows up to the checkpoint's step.
+  /// which write their files when destroyed, do not exist yet): the scene's fingerprint and
+  /// where the CSV files' rows through the checkpoint's step end.
   struct ResumeCheck {
     std::uint64_t scene_fingerprint;
-    CsvRows stats;
+    CsvEnd stats;
     CsvEnd bodies;
-    std::optional<CsvRows> joints;
+    std::optional<CsvEnd> joints;
   };
-  /// Checks the scene against the checkpoint and reads the CSV files' rows up to its step
-  /// (stats.csv and bodies.csv must reach it); a ResumeError names the file or the folder.
+  /// Checks the scene against the checkpoint and finds where the CSV files' rows through its
+  /// step end (stats.csv and bodies.csv must reach it); a ResumeError names the file or the
+  /// folder.
   static ResumeCheck checked_resume(const std::filesystem::path& out, const SceneDescription& scene,
                                     const Checkpoint& checkpoint);
   /// The resuming constructor, given what checked_resume() read.

@@ -4,12 +4,11 @@
 #include <iostream>
 #include <stdexcept>
 
-#include <stiffsoft/io/atomic_file.hpp>
 
 namespace stiffsoft {
 
 StatsWriter::StatsWriter(std::filesystem::path file, std::vector<std::string> columns)
-    : file_(std::move(file)), columns_(std::move(columns)) {
+    : file_(std::move(file)), columns_(std::move(columns)), csv_(file_, columns_) {
   if (columns_.empty()) {
     throw std::invalid_argument("stats file '" + file_.string() + "': no columns given");
   }
@@ -49,16 +48,14 @@ void StatsWriter::add_row(const std::vector<double>& values) {
 }
 
 void StatsWriter::flush() {
-  write_file_atomically(file_, [&](std::ostream& out) {
-    for (std::size_t i = 0; i < columns_.size(); ++i) out << (i > 0 ? "," : "") << columns_[i];
-    out << '\n' << rows_;
-  });
+  csv_.write(rows_);
+  rows_.clear();
   dirty_ = false;
 }
 
-void StatsWriter::reload(CsvRows rows) {
-  rows_ = std::move(rows.text);
-  row_count_ = rows.count;
+void StatsWriter::reload(const CsvEnd& end) {
+  rows_.clear();
+  csv_.keep(end.length);
   dirty_ = true;
 }
 

@@ -5,23 +5,25 @@
 #include <string>
 #include <vector>
 
+#include <stiffsoft/io/appended_csv.hpp>
 #include <stiffsoft/io/csv_rows.hpp>
 
 namespace stiffsoft {
 
 /// stats.csv: a header line (the column names, comma-separated), then one line per add_row().
-/// Rows are kept in memory and the whole file is rewritten atomically (stiffsoft/io/atomic_file.hpp) on
-/// flush() and at destruction, so the file on disk is always whole. Values are written in the
-/// shortest form that reads back to the same double ("nan"/"inf" for non-finite values).
+/// Rows are kept in memory until flush() (and destruction); the file is written whole once and
+/// then appended (AppendedCsv), so a long run does not rewrite it at every frame. Values are
+/// written in the shortest form that reads back to the same double ("nan"/"inf" for non-finite
+/// values).
 class StatsWriter {
  public:
   /// `file`: the .csv to (re)write; its folder must exist. `columns`: non-empty, names without
   /// ',', '"' or line breaks (throws std::invalid_argument otherwise). Nothing is written before flush() or destruction.
   StatsWriter(std::filesystem::path file, std::vector<std::string> columns);
 
-  /// Rewrites the file unless nothing changed since the last successful flush() (so a writer
-  /// that never flushed still leaves at least the header); a failure is reported on stderr,
-  /// never thrown (destructors must not throw). Call flush() first to see errors.
+  /// Flushes unless nothing changed since the last successful flush() (so a writer that never
+  /// flushed still leaves at least the header); a failure is reported on stderr, never thrown
+  /// (destructors must not throw). Call flush() first to see errors.
   ~StatsWriter();
 
   StatsWriter(const StatsWriter&) = delete;             ///< one writer per file
@@ -31,23 +33,26 @@ class StatsWriter {
   /// (throws std::invalid_argument otherwise).
   void add_row(const std::vector<double>& values);
 
-  /// Rewrites the file with the header and every row so far. Throws std::runtime_error naming
-  /// the file on I/O failure; the previous file content then stays intact.
+  /// Puts the rows added since the last flush on disk (the header and them the first time, then
+  /// appending). Throws std::runtime_error naming the file on I/O failure; the rows then stay
+  /// in memory.
   void flush();
 
-  /// Continues a resumed run: takes `rows` (csv_rows_through_step of this file, read before
-  /// the writer existed) as the rows so far.
-  void reload(CsvRows rows);
+  /// Continues a resumed run: the file's first `end.length` bytes (csv_end_through_step of this
+  /// file, read before the writer existed) are its header and the rows so far; the next flush
+  /// cuts the file there and appends.
+  void reload(const CsvEnd& end);
 
-  /// Number of rows added so far.
+  /// Number of rows add_row() added (a resumed run's earlier rows not counted).
   std::size_t row_count() const;
 
  private:
   std::filesystem::path file_;        ///< the .csv
   std::vector<std::string> columns_;  ///< header names
-  std::string rows_;                  ///< every row so far, already formatted, '\n'-terminated
-  std::size_t row_count_ = 0;         ///< rows in rows_
-  bool dirty_ = true;                 ///< file not yet written with the current rows
+  AppendedCsv csv_;                   ///< the .csv on disk
+  std::string rows_;                  ///< rows not yet on disk, already formatted, '\n'-terminated
+  std::size_t row_count_ = 0;         ///< rows add_row() added
+  bool dirty_ = true;                 ///< rows (or the header) not yet on disk
 };
 
 }  // namespace stiffsoft

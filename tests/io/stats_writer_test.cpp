@@ -71,6 +71,31 @@ TEST_F(StatsWriterTest, FlushAfterEachRowKeepsTheFileWhole) {
   EXPECT_EQ(entries, 1u);  // no temporaries left
 }
 
+// A flush appends the rows added since the last one and leaves the file's earlier bytes as
+// they are (a long run does not rewrite its file at every frame); a resumed writer cuts the
+// file after the checkpoint's rows at its first flush, then appends.
+TEST_F(StatsWriterTest, FlushesAppendAndAResumedWriterCutsAfterTheKeptRows) {
+  const auto file = dir_ / "stats.csv";
+  {
+    StatsWriter stats(file, {"step", "x"});
+    stats.add_row({0, 0.5});
+    stats.add_row({1, 1.5});
+    stats.flush();
+    // Marks the file's first row where a rewrite would restore it.
+    std::fstream(file, std::ios::in | std::ios::out | std::ios::binary).seekp(7) << '9';
+    stats.add_row({2, 2.5});
+    stats.add_row({3, 3.5});
+  }  // the destructor flushes
+  EXPECT_EQ(lines(file), (std::vector<std::string>{"step,x", "9,0.5", "1,1.5", "2,2.5", "3,3.5"}));
+  StatsWriter resumed(file, {"step", "x"});
+  resumed.reload(csv_end_through_step(file, {"step", "x"}, 1));
+  EXPECT_EQ(lines(file).size(), 5u);  // nothing cut before the first flush
+  resumed.add_row({2, 7.5});
+  resumed.flush();
+  EXPECT_EQ(lines(file), (std::vector<std::string>{"step,x", "9,0.5", "1,1.5", "2,7.5"}));
+  EXPECT_EQ(resumed.row_count(), 1u);
+}
+
 TEST_F(StatsWriterTest, DestructorWritesTheHeaderEvenWithoutRows) {
   const auto file = dir_ / "stats.csv";
   { StatsWriter stats(file, {"time"}); }
