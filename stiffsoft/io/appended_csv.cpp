@@ -16,7 +16,8 @@ void AppendedCsv::write(const std::string& rows) {
   if (!m_on_disk && m_kept > 0) {
     std::error_code error;
     std::filesystem::resize_file(m_file, m_kept, error);
-    if (error) throw std::runtime_error("cannot cut " + m_file.string() + " to its resumed rows: " + error.message());
+    if (error)
+      throw std::runtime_error("cannot cut " + m_file.string() + " to its resumed rows: " + error.message());
     m_on_disk = true;
   }
   if (!m_on_disk) {

@@ -21,9 +21,9 @@ struct CsvEnd {
 
 /// The end of the rows of `file` whose step is at most `last_step`, where a resumed run cuts
 /// the file (AppendedCsv::keep): only the header and the lines after the last such row are
-/// read, from the file's end, so a long run's file is not read back whole. A partial last line is not kept. Throws ResumeError
-/// (checkpoint.hpp) naming the file when it cannot be read, its header is not `columns` or a
-/// line read does not start with a step number.
+/// read, from the file's end, so a long run's file is not read back whole. A partial last line
+/// is not kept. Throws ResumeError (checkpoint.hpp) naming the file when it cannot be read, its
+/// header is not `columns` or a line read does not start with a step number.
 CsvEnd csv_end_through_step(const std::filesystem::path& file, const std::vector<std::string>& columns, int last_step);
 
 }  // namespace stiffsoft

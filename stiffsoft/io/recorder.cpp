@@ -67,16 +67,15 @@ Recorder::ResumeCheck Recorder::checked_resume(const std::filesystem::path& out,
   const int step = checkpoint.state.step;
   // stats.csv and bodies.csv must reach the checkpoint's step; each file is read only back
   // from its end.
-  const auto reaching_step = [&](const std::filesystem::path& file, auto rows) {
-    if (rows.last_step != step)
-      throw ResumeError(file.string() + ": holds steps up to " + std::to_string(rows.last_step) +
+  const auto reaching_step = [&](const std::filesystem::path& file, const std::vector<std::string>& columns) {
+    const CsvEnd end = csv_end_through_step(file, columns, step);
+    if (end.last_step != step)
+      throw ResumeError(file.string() + ": holds steps up to " + std::to_string(end.last_step) +
                         ", the checkpoint is at step " + std::to_string(step) + " (damaged output folder)");
-    return rows;
+    return end;
   };
-  ResumeCheck check{fingerprint,
-                    reaching_step(out / "stats.csv", csv_end_through_step(out / "stats.csv", step_stats_column_names(), step)),
-                    reaching_step(out / "bodies.csv", csv_end_through_step(out / "bodies.csv", body_state_columns(), step)),
-                    std::nullopt};
+  ResumeCheck check{fingerprint, reaching_step(out / "stats.csv", step_stats_column_names()),
+                    reaching_step(out / "bodies.csv", body_state_columns()), std::nullopt};
   if (!scene.joints.empty()) check.joints = csv_end_through_step(out / "joints.csv", joint_columns(), step);
   return check;
 }
