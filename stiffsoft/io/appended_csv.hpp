@@ -29,10 +29,10 @@ class AppendedCsv {
   const std::filesystem::path& file() const { return m_file; }
 
  private:
-  std::filesystem::path m_file;
-  std::string m_header;        ///< the first line, '\n' included
-  bool m_on_disk = false;     ///< the file holds the header and the rows written so far
-  std::uintmax_t m_kept = 0;  ///< a resumed run's bytes to keep (keep()), cut at the next write
+  std::filesystem::path m_file;  ///< the .csv
+  std::string m_header;          ///< its first line, '\n' included
+  bool m_on_disk = false;        ///< the file holds the header and the rows written so far
+  std::uintmax_t m_kept = 0;     ///< a resumed run's bytes to keep (keep()), cut at the next write
 };
 
 }  // namespace stiffsoft

@@ -8,13 +8,13 @@
 namespace stiffsoft {
 
 StatsWriter::StatsWriter(std::filesystem::path file, std::vector<std::string> columns)
-    : file_(std::move(file)), columns_(std::move(columns)), csv_(file_, columns_) {
+    : columns_(std::move(columns)), csv_(std::move(file), columns_) {
   if (columns_.empty()) {
-    throw std::invalid_argument("stats file '" + file_.string() + "': no columns given");
+    throw std::invalid_argument("stats file '" + csv_.file().string() + "': no columns given");
   }
   for (const std::string& column : columns_) {
     if (column.empty() || column.find_first_of(",\"\r\n") != std::string::npos) {
-      throw std::invalid_argument("stats file '" + file_.string() + "': column name '" + column +
+      throw std::invalid_argument("stats file '" + csv_.file().string() + "': column name '" + column +
                                   "' is empty or contains ',', '\"' or a line break");
     }
   }
@@ -31,7 +31,7 @@ StatsWriter::~StatsWriter() {
 
 void StatsWriter::add_row(const std::vector<double>& values) {
   if (values.size() != columns_.size()) {
-    throw std::invalid_argument("stats file '" + file_.string() + "': row has " +
+    throw std::invalid_argument("stats file '" + csv_.file().string() + "': row has " +
                                 std::to_string(values.size()) + " values, expected " +
                                 std::to_string(columns_.size()));
   }

@@ -47,7 +47,6 @@ class StatsWriter {
   std::size_t row_count() const;
 
  private:
-  std::filesystem::path file_;        ///< the .csv
   std::vector<std::string> columns_;  ///< header names
   AppendedCsv csv_;                   ///< the .csv on disk
   std::string rows_;                  ///< rows not yet on disk, already formatted, '\n'-terminated
