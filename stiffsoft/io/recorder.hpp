@@ -23,7 +23,9 @@
 
 namespace stiffsoft {
 
-/// Writes one run into a folder (every file atomically, so a killed run leaves whole files):
+/// Writes one run into a folder (frames, `.pvd` files and the scene atomically, the CSV files
+/// whole at their first flush and appended after it: a killed run leaves whole files, but for a
+/// CSV file's partial last line, which a resumed run drops):
 /// - `NAME.pvd` + `frames/NAME_NNNNNN.vtm`: a frame at t = 0, then every `output.frame_dt`
 ///   of simulated time and after the last step (io/frame_writer.hpp);
 /// - `stats.csv`: one row per step, the columns of step_stats_columns();
