@@ -2,11 +2,8 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
-#include <iostream>
 #include <limits>
 #include <stdexcept>
-
 
 namespace stiffsoft {
 
@@ -29,16 +26,7 @@ const std::vector<std::string>& body_state_columns() {
 }
 
 BodyStateWriter::BodyStateWriter(std::filesystem::path file, std::size_t pending_bytes)
-    : csv_(std::move(file), body_state_columns()), pending_bytes_(pending_bytes) {}
-
-BodyStateWriter::~BodyStateWriter() {
-  if (!dirty_) return;
-  try {
-    flush();
-  } catch (const std::exception& e) {
-    std::cerr << "stiffsoft: " << e.what() << '\n';
-  }
-}
+    : csv_(std::move(file), body_state_columns(), pending_bytes) {}
 
 void BodyStateWriter::add_state(int step, const Simulation& sim) {
   const Model& model = sim.model();
@@ -47,6 +35,7 @@ void BodyStateWriter::add_state(int step, const Simulation& sim) {
   const Eigen::MatrixX3d nodes_x = soft ? sim.node_positions() : Eigen::MatrixX3d();
   const Eigen::MatrixX3d nodes_v = soft ? sim.node_velocities() : Eigen::MatrixX3d();
   const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::string& rows = csv_.rows();
   for (int b = 0; b < int(model.bodies.size()); ++b) {
     const BodyModel& body = model.bodies[b];
     Eigen::Vector3d p, v, w;
@@ -82,40 +71,31 @@ void BodyStateWriter::add_state(int step, const Simulation& sim) {
       body_fc += fc.row(vtx).transpose();
       body_ff += ff.row(vtx).transpose();
     }
-    rows_ += std::to_string(step);
-    append_number(rows_, sim.time());
-    rows_ += ',';
+    rows += std::to_string(step);
+    append_number(rows, sim.time());
+    rows += ',';
     if (body.name.find_first_of(",\"\r\n") == std::string::npos) {
-      rows_ += body.name;
+      rows += body.name;
     } else {  // RFC 4180 quoting
-      rows_ += '"';
-      for (char c : body.name) rows_ += c == '"' ? std::string("\"\"") : std::string(1, c);
-      rows_ += '"';
+      rows += '"';
+      for (char c : body.name) rows += c == '"' ? std::string("\"\"") : std::string(1, c);
+      rows += '"';
     }
-    for (int i = 0; i < 3; ++i) append_number(rows_, p[i]);
-    for (int i = 0; i < 3; ++i) append_number(rows_, v[i]);
-    for (int i = 0; i < 3; ++i) append_number(rows_, w[i]);
+    for (int i = 0; i < 3; ++i) append_number(rows, p[i]);
+    for (int i = 0; i < 3; ++i) append_number(rows, v[i]);
+    for (int i = 0; i < 3; ++i) append_number(rows, w[i]);
     for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) append_number(rows_, A(i, j));
-    append_number(rows_, kinetic);
-    for (int i = 0; i < 3; ++i) append_number(rows_, body_fc[i]);
-    for (int i = 0; i < 3; ++i) append_number(rows_, body_ff[i]);
-    rows_ += '\n';
+      for (int j = 0; j < 3; ++j) append_number(rows, A(i, j));
+    append_number(rows, kinetic);
+    for (int i = 0; i < 3; ++i) append_number(rows, body_fc[i]);
+    for (int i = 0; i < 3; ++i) append_number(rows, body_ff[i]);
+    rows += '\n';
   }
-  dirty_ = true;
-  if (rows_.size() >= pending_bytes_) flush();
+  csv_.added();
 }
 
-void BodyStateWriter::reload(const CsvEnd& end) {
-  rows_.clear();
-  csv_.keep(end.length);
-  dirty_ = true;
-}
+void BodyStateWriter::reload(const CsvEnd& end) { csv_.keep(end.length); }
 
-void BodyStateWriter::flush() {
-  csv_.write(rows_);
-  rows_.clear();
-  dirty_ = false;
-}
+void BodyStateWriter::flush() { csv_.flush(); }
 
 }  // namespace stiffsoft

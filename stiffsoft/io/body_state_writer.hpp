@@ -22,24 +22,16 @@ namespace stiffsoft {
 ///   w and A are written as nan, kinetic energy Σ ½ mᵢ |vᵢ|² (J).
 /// - fc, ff: the sum of the contact (barrier) and friction forces on the body's surface
 ///   vertices (N).
-/// Rows are kept in memory until flush() (and destruction), or until they reach the writer's
-/// bound (kBodyRowsPendingBytes), when add_state() flushes them itself: a run with few frames
-/// (a large output.frame_dt) holds at most that much, not every row since its last frame. The
-/// file is written whole once and then appended (AppendedCsv); a resumed run (reload()) cuts
-/// it after the checkpoint's rows at its first flush, so that resuming reads and holds none of
-/// the rows it keeps.
+/// Rows are held and written as AppendedCsv holds and writes them (whole once, then appended;
+/// at flush(), destruction or its bound); a resumed run (reload()) cuts the file after the
+/// checkpoint's rows at its first flush, so that resuming reads and holds none of the rows it
+/// keeps.
 class BodyStateWriter {
  public:
-  /// Bytes of rows held in memory before add_state() appends them to the file: 4 MiB, about 14
-  /// steps of the 562-body pile `full` (290 kB a step). Held until the next frame, a run without
-  /// frames grew by 0.6 MB a step there, each growth of the buffer touching fresh pages (15 µs a
-  /// page fault on this project's machine; docs/benchmarks.md, "Memory of a long run").
-  static constexpr std::size_t kBodyRowsPendingBytes = std::size_t(4) << 20;
-  /// `file`: the .csv to (re)write; its folder must exist. Nothing is written before flush() or
-  /// before the rows held reach `pending_bytes`.
-  explicit BodyStateWriter(std::filesystem::path file, std::size_t pending_bytes = kBodyRowsPendingBytes);
-  /// Flushes unless nothing changed; errors go to stderr (destructors must not throw).
-  ~BodyStateWriter();
+  /// `file`: the .csv to (re)write; its folder must exist. Nothing is written before flush(),
+  /// destruction or `pending_bytes` of rows.
+  explicit BodyStateWriter(std::filesystem::path file,
+                           std::size_t pending_bytes = AppendedCsv::kPendingBytes);
   BodyStateWriter(const BodyStateWriter&) = delete;             ///< one writer per file
   BodyStateWriter& operator=(const BodyStateWriter&) = delete;  ///< one writer per file
 
@@ -55,10 +47,7 @@ class BodyStateWriter {
   void reload(const CsvEnd& end);
 
  private:
-  AppendedCsv csv_;             ///< the .csv on disk
-  std::size_t pending_bytes_;   ///< rows held before add_state() flushes them
-  std::string rows_;            ///< rows not yet on disk, '\n'-terminated
-  bool dirty_ = true;           ///< rows (or the header) not yet on disk
+  AppendedCsv csv_;  ///< the rows held and the .csv on disk
 };
 
 /// The column names of bodies.csv, in order.

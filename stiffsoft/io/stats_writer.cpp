@@ -1,9 +1,7 @@
 #include <stiffsoft/io/stats_writer.hpp>
 
 #include <charconv>
-#include <iostream>
 #include <stdexcept>
-
 
 namespace stiffsoft {
 
@@ -20,15 +18,6 @@ StatsWriter::StatsWriter(std::filesystem::path file, std::vector<std::string> co
   }
 }
 
-StatsWriter::~StatsWriter() {
-  if (!dirty_) return;
-  try {
-    flush();
-  } catch (const std::exception& e) {
-    std::cerr << "stiffsoft: " << e.what() << '\n';
-  }
-}
-
 void StatsWriter::add_row(const std::vector<double>& values) {
   if (values.size() != columns_.size()) {
     throw std::invalid_argument("stats file '" + csv_.file().string() + "': row has " +
@@ -37,27 +26,20 @@ void StatsWriter::add_row(const std::vector<double>& values) {
   }
   // Formatting now keeps flush() a plain copy; to_chars gives the shortest round-trip text.
   char buffer[32];
+  std::string& rows = csv_.rows();
   for (std::size_t i = 0; i < values.size(); ++i) {
-    if (i > 0) rows_ += ',';
+    if (i > 0) rows += ',';
     const auto result = std::to_chars(buffer, buffer + sizeof(buffer), values[i]);
-    rows_.append(buffer, result.ptr);
+    rows.append(buffer, result.ptr);
   }
-  rows_ += '\n';
+  rows += '\n';
   ++row_count_;
-  dirty_ = true;
+  csv_.added();
 }
 
-void StatsWriter::flush() {
-  csv_.write(rows_);
-  rows_.clear();
-  dirty_ = false;
-}
+void StatsWriter::flush() { csv_.flush(); }
 
-void StatsWriter::reload(const CsvEnd& end) {
-  rows_.clear();
-  csv_.keep(end.length);
-  dirty_ = true;
-}
+void StatsWriter::reload(const CsvEnd& end) { csv_.keep(end.length); }
 
 std::size_t StatsWriter::row_count() const { return row_count_; }
 

@@ -11,31 +11,25 @@
 namespace stiffsoft {
 
 /// stats.csv: a header line (the column names, comma-separated), then one line per add_row().
-/// Rows are kept in memory until flush() (and destruction); the file is written whole once and
-/// then appended (AppendedCsv), so a long run does not rewrite it at every frame. Values are
-/// written in the shortest form that reads back to the same double ("nan"/"inf" for non-finite
-/// values).
+/// Rows are held and written as AppendedCsv holds and writes them (whole once, then appended;
+/// at flush(), destruction or its bound). Values are written in the shortest form that reads
+/// back to the same double ("nan"/"inf" for non-finite values).
 class StatsWriter {
  public:
   /// `file`: the .csv to (re)write; its folder must exist. `columns`: non-empty, names without
-  /// ',', '"' or line breaks (throws std::invalid_argument otherwise). Nothing is written before flush() or destruction.
+  /// ',', '"' or line breaks (throws std::invalid_argument otherwise). Nothing is written
+  /// before flush(), destruction or AppendedCsv's bound.
   StatsWriter(std::filesystem::path file, std::vector<std::string> columns);
-
-  /// Flushes unless nothing changed since the last successful flush() (so a writer that never
-  /// flushed still leaves at least the header); a failure is reported on stderr, never thrown
-  /// (destructors must not throw). Call flush() first to see errors.
-  ~StatsWriter();
 
   StatsWriter(const StatsWriter&) = delete;             ///< one writer per file
   StatsWriter& operator=(const StatsWriter&) = delete;  ///< one writer per file
 
   /// Appends a row in memory; `values.size()` must equal the number of columns
-  /// (throws std::invalid_argument otherwise).
+  /// (throws std::invalid_argument otherwise). Flushes once the rows held reach the bound.
   void add_row(const std::vector<double>& values);
 
-  /// Puts the rows added since the last flush on disk (the header and them the first time, then
-  /// appending). Throws std::runtime_error naming the file on I/O failure; the rows then stay
-  /// in memory.
+  /// Puts the rows held on disk (AppendedCsv::flush). Throws std::runtime_error naming the file
+  /// on I/O failure; the rows then stay held.
   void flush();
 
   /// Continues a resumed run: the file's first `end.length` bytes (csv_end_through_step of this
@@ -48,10 +42,8 @@ class StatsWriter {
 
  private:
   std::vector<std::string> columns_;  ///< header names
-  AppendedCsv csv_;                   ///< the .csv on disk
-  std::string rows_;                  ///< rows not yet on disk, already formatted, '\n'-terminated
+  AppendedCsv csv_;                   ///< the rows held and the .csv on disk
   std::size_t row_count_ = 0;         ///< rows add_row() added
-  bool dirty_ = true;                 ///< rows (or the header) not yet on disk
 };
 
 }  // namespace stiffsoft
