@@ -42,15 +42,16 @@ def with_absolute_meshes(scene, scene_dir):
     return scene
 
 
-def frames_off_copy(scene_path, last_step, out):
-    """Writes the scene with frames off and a duration that reaches `last_step`; its path."""
+def frames_off_copy(scene_path, from_step, out):
+    """Writes the scene with frames off and a duration far past `from_step` (the same copy for
+    any window, so that the checkpoint is reused); its path."""
     try:
         with open(scene_path) as f:
             scene = with_absolute_meshes(json.load(f), os.path.dirname(os.path.abspath(scene_path)))
         dt = float(scene["time"]["dt"])
     except (OSError, ValueError, KeyError, TypeError) as e:
         sys.exit(f"thread_speedup: {scene_path}: cannot read the scene's time.dt ({e})")
-    scene["time"]["duration"] = max(float(scene["time"].get("duration", 0.0)), (last_step + 10) * dt)
+    scene["time"]["duration"] = max(float(scene["time"].get("duration", 0.0)), (from_step + 100000) * dt)
     scene.setdefault("output", {})["frame_dt"] = 10.0 * scene["time"]["duration"]
     path = os.path.join(out, "scene.json")
     with open(path, "w") as f:
@@ -122,7 +123,7 @@ def main():
         sys.exit("thread_speedup: expected --from-step ≥ 0, --skip ≥ 0, --steps ≥ 1, --rounds ≥ 1, --threads ≥ 2")
     os.makedirs(args.out, exist_ok=True)
     first, last = args.from_step + args.skip + 1, args.from_step + args.skip + args.steps
-    scene = frames_off_copy(args.scene, last, args.out)
+    scene = frames_off_copy(args.scene, args.from_step, args.out)
     start = checkpoint(args.binary, scene, args.out, args.from_step, args.threads)
 
     print(f"# {args.scene}, steps {first}–{last} resumed from step {args.from_step}, frames off")
