@@ -7,8 +7,8 @@ checkpoint on one thread and on N, in alternated rounds, frames off.
     python3 scripts/thread_speedup.py scenes/bricks_900.json --from-step 80 --steps 40 --rounds 5
 
 The scene is copied with its frames off (`output.frame_dt` beyond the run) and run once to
-`--from-step` with a checkpoint (kept in the output folder and reused while the scene copy and
-the step are the same). Each round resumes that checkpoint on one thread and on `--threads`
+`--from-step` with a checkpoint (kept in the output folder and reused while the scene copy, the
+step and the program are the same). Each round resumes that checkpoint on one thread and on `--threads`
 (the order alternating between rounds, so that a drift of the machine's speed favours neither),
 leaves out the first `--skip` steps after the resume (a resumed process first touches its
 memory and analyses its first patterns: docs/benchmarks.md, session 59) and divides the
@@ -68,10 +68,11 @@ def run(binary, scene, folder, steps, threads, resume):
 
 
 def checkpoint(binary, scene, out, from_step, threads):
-    """The run to `from_step`, made once per scene copy and step."""
+    """The run to `from_step`, made once per scene copy, step and build of the program."""
     folder = os.path.join(out, "checkpoint")
+    program = os.stat(binary)
     with open(scene, "rb") as f:
-        key = hashlib.sha256(f.read() + str(from_step).encode()).hexdigest()
+        key = hashlib.sha256(f.read() + f"{from_step} {program.st_size} {program.st_mtime_ns}".encode()).hexdigest()
     key_file = os.path.join(out, "checkpoint.key")
     if os.path.isdir(folder) and os.path.isfile(key_file) and open(key_file).read() == key:
         return folder
