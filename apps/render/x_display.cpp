@@ -103,8 +103,12 @@ XDisplay::XDisplay(const std::filesystem::path& xvfb_log) {
       std::freopen(log.c_str(), "a", stdout);
       std::freopen(log.c_str(), "a", stderr);
       const std::string fd = std::to_string(ready[1]);
+      // -noreset: an X server resets when its last client disconnects and hangs up on the
+      // clients that connect meanwhile. pvbatch connects once, disconnects and connects again
+      // at once, so on a loaded machine its second connection met the reset ("bad X server
+      // connection": 5 of 10 runs beside two busy simulations, 0 of 14 with -noreset).
       ::execl(xvfb->c_str(), "Xvfb", name.c_str(), "-displayfd", fd.c_str(), "-screen", "0", "1920x1080x24",
-              "-nolisten", "tcp", nullptr);
+              "-nolisten", "tcp", "-noreset", nullptr);
       ::_exit(127);
     }
     ::close(ready[1]);
