@@ -73,8 +73,8 @@ TEST(ParaViewScript, OpensTheRunColouredInPvbatch) {
   const fs::path xvfb_log = out / "xvfb.log";
   const stiffsoft::XDisplay display(xvfb_log);
   const int status = std::system(command.c_str());
-  ASSERT_EQ(status, 0) << read_text(out / "pvbatch.log") << "\ndisplay " << display.name() << "; Xvfb printed:\n"
-                       << read_text(xvfb_log);
+  ASSERT_EQ(status, 0) << read_text(out / "pvbatch.log") << "\ndisplay " << display.name()
+                       << "; Xvfb printed:\n" << read_text(xvfb_log);
   const std::string log = read_text(out / "pvbatch.log");
   EXPECT_EQ(log.find("Traceback"), std::string::npos) << log;
   ASSERT_TRUE(fs::exists(png)) << log;
