@@ -19,7 +19,6 @@ machine and its load; `--out` keeps the runs. Only the standard library is used.
 """
 
 import argparse
-import csv
 import hashlib
 import json
 import os
@@ -83,11 +82,10 @@ def checkpoint(binary, scene, out, from_step, threads):
     return folder
 
 
-def window_rows(folder, first, last):
-    """stats.csv's rows of steps [first, last] without the wall-clock columns."""
-    with open(os.path.join(folder, "stats.csv"), newline="") as f:
-        rows = [r for r in csv.DictReader(f) if first <= int(float(r["step"])) <= last]
-    return [{k: v for k, v in r.items() if not k.startswith("seconds_")} for r in rows]
+def results(rows, first, last):
+    """stats.csv's rows (read_rows) of steps [first, last] without the wall-clock columns."""
+    return [{k: v for k, v in r.items() if not k.startswith("seconds_")}
+            for r in rows if first <= int(float(r["step"])) <= last]
 
 
 def machine():
@@ -140,10 +138,11 @@ def main():
             shutil.rmtree(folder, ignore_errors=True)
             shutil.copytree(start, folder)
             run(args.binary, scene, folder, last, threads, resume=True)
-            s = summarise(read_rows(folder), first, last)
+            stats = read_rows(folder)
+            s = summarise(stats, first, last)
             if s is None or s["steps"] != args.steps:
                 sys.exit(f"thread_speedup: {folder}/stats.csv lacks steps {first}–{last}")
-            ms[threads], rows[threads] = s["ms_per_iteration"], window_rows(folder, first, last)
+            ms[threads], rows[threads] = s["ms_per_iteration"], results(stats, first, last)
             cells = [str(r + 1), str(threads), f"{s['iterations']:.0f}", f"{s['ms_per_iteration']:.2f}"]
             cells += [f"{s['phases_ms'][p]:.2f}" for p in PHASES] + [f"{s['other_ms']:.2f}"]
             print("| " + " | ".join(cells) + " |", flush=True)

@@ -79,5 +79,4 @@ CsvEnd csv_end_through_step(const std::filesystem::path& file, const std::vector
   }
 }
 
-
 }  // namespace stiffsoft
