@@ -31,6 +31,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from iteration_cost import PHASES, read_rows, summarise  # noqa: E402
 
+
 def with_absolute_meshes(scene, scene_dir):
     """The scene with every body's mesh file (`bodies[].mesh`, relative to the scene file's
     folder: docs/scenes.md) made absolute, so that the copy in the output folder reads the same."""
@@ -73,8 +74,10 @@ def checkpoint(binary, scene, out, from_step, threads):
     with open(scene, "rb") as f:
         key = hashlib.sha256(f.read() + f"{from_step} {program.st_size} {program.st_mtime_ns}".encode()).hexdigest()
     key_file = os.path.join(out, "checkpoint.key")
-    if os.path.isdir(folder) and os.path.isfile(key_file) and open(key_file).read() == key:
-        return folder
+    if os.path.isdir(folder) and os.path.isfile(key_file):
+        with open(key_file) as f:
+            if f.read() == key:
+                return folder
     shutil.rmtree(folder, ignore_errors=True)
     run(binary, scene, folder, from_step, threads, resume=False)
     with open(key_file, "w") as f:
