@@ -75,7 +75,7 @@ constexpr const char* kSchemaText = R"JSON([
   {"pointer": "/solver", "type": "object", "doc": "Newton's stopping rule and the linear solver."},
   {"pointer": "/solver/tolerance", "type": "number", "default": null, "exclusive_min": 0, "unit": "m/s",
    "default_doc": "1e-2 × bounding-box diagonal / s",
-   "doc": "Newton stops when the largest surface-point step divided by h is below this speed (ε_d)."},
+   "doc": "Newton stops when the largest surface-point step divided by h is below this speed (ε_d). A looser one takes fewer iterations but not always less time, and from twice the default the validation inclines (scenes/incline_*.json) fail: their landing step stops before friction has taken the block's speed along the slope (see docs/newton.md, session 62)."},
   {"pointer": "/solver/gap_tolerance", "type": "number", "exclusive_min": 0,
    "doc": "Newton also stops only when its last direction changes no active contact's distance d by more than this fraction of d. Without it a contact pressed deep into the barrier (a landing at speed) can stop at micrometres, far from force balance: the log barrier pushes it out by only a small multiple of its gap per iteration, which the speed rule takes for convergence (see docs/newton.md)."},
   {"pointer": "/solver/max_iterations", "type": "integer", "min": 1,
