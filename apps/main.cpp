@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
   run_cmd->add_option("scene", run.scene, "scene file (.json)")->required();
   run_cmd->add_option("-o,--out", run.out, "output folder")->required();
   run_cmd->add_option("--steps", run.steps, "number of steps (default: the scene's duration)")->check(CLI::PositiveNumber);
-  run_cmd->add_option("--threads", run.threads, "worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  run_cmd->add_option("--threads", run.threads, "worker threads (default: all cores); the output is written on one more")->check(CLI::NonNegativeNumber);
   run_cmd->add_flag("--resume", run.resume, "continue the run in the output folder from its last checkpoint (same scene, same files)");
   run_cmd->add_option("--checkpoint-every", run.checkpoint_every, "frames between checkpoints for --resume (0: none)")
       ->check(CLI::NonNegativeNumber);

@@ -59,9 +59,9 @@ void bind_output(py::module_& m) {
       .def("finish", [](PyRecorder& r) {
              if (r.recorder) r.recorder->finish();
            },
-           "Flushes what is not on disk yet (stats.csv, bodies.csv).")
+           "Waits for the writes in flight and flushes the rest; the files are complete when it returns.")
       .def_property_readonly("frame_count", [](const PyRecorder& r) { return r.recorder ? r.recorder->frame_count() : 0; },
-                             "frames written so far")
+                             "frames on disk so far")
       .def_property_readonly("pvd_path", [](const PyRecorder& r) { return r.recorder ? r.recorder->pvd_path() : std::filesystem::path(); },
                              "OUT/NAME.pvd, for ParaView")
       .def("__enter__", [](PyRecorder& r) -> PyRecorder& { return r; })

@@ -28,67 +28,84 @@ const std::vector<std::string>& body_state_columns() {
 BodyStateWriter::BodyStateWriter(std::filesystem::path file, std::size_t pending_bytes)
     : csv_(std::move(file), body_state_columns(), pending_bytes) {}
 
-void BodyStateWriter::add_state(int step, const Simulation& sim) {
+std::vector<BodyState> body_states(const Simulation& sim) {
   const Model& model = sim.model();
   const Eigen::MatrixX3d fc = sim.contact_forces(), ff = sim.friction_forces();
   const bool soft = model.has_soft_bodies();
   const Eigen::MatrixX3d nodes_x = soft ? sim.node_positions() : Eigen::MatrixX3d();
   const Eigen::MatrixX3d nodes_v = soft ? sim.node_velocities() : Eigen::MatrixX3d();
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  std::string& rows = csv_.rows();
+  std::vector<BodyState> states(model.bodies.size());
   for (int b = 0; b < int(model.bodies.size()); ++b) {
     const BodyModel& body = model.bodies[b];
-    Eigen::Vector3d p, v, w;
-    Eigen::Matrix3d A;
-    double kinetic = 0;
+    BodyState& s = states[b];
     if (body.representation == Representation::Soft) {
-      p.setZero();
-      v.setZero();
+      s.p.setZero();
+      s.v.setZero();
       double mass = 0;
       for (int i = body.node_begin; i < body.node_end; ++i) {
         const double m = model.nodes.mass[i];
-        p += m * nodes_x.row(i).transpose();
-        v += m * nodes_v.row(i).transpose();
-        kinetic += 0.5 * m * nodes_v.row(i).squaredNorm();
+        s.p += m * nodes_x.row(i).transpose();
+        s.v += m * nodes_v.row(i).transpose();
+        s.kinetic_energy += 0.5 * m * nodes_v.row(i).squaredNorm();
         mass += m;
       }
-      p /= mass;
-      v /= mass;
-      w.setConstant(nan);
-      A.setConstant(nan);
+      s.p /= mass;
+      s.v /= mass;
+      s.w.setConstant(nan);
+      s.A.setConstant(nan);
     } else {
       const abd::Vector12d q = model.body_q(b, sim.q());
       abd::Vector12d qdot = abd::Vector12d::Zero();
       if (body.dof >= 0) qdot = sim.qdot().segment<12>(body.dof);
-      p = abd::translation(q);
-      A = abd::affine_matrix(q);
-      v = qdot.head<3>();
-      w = abd::angular_velocity(q, qdot);
-      kinetic = 0.5 * qdot.dot(body.M * qdot);
+      s.p = abd::translation(q);
+      s.A = abd::affine_matrix(q);
+      s.v = qdot.head<3>();
+      s.w = abd::angular_velocity(q, qdot);
+      s.kinetic_energy = 0.5 * qdot.dot(body.M * qdot);
     }
-    Eigen::Vector3d body_fc = Eigen::Vector3d::Zero(), body_ff = Eigen::Vector3d::Zero();
+    s.fc.setZero();
+    s.ff.setZero();
     for (int vtx = body.vertex_begin; vtx < body.vertex_end; ++vtx) {
-      body_fc += fc.row(vtx).transpose();
-      body_ff += ff.row(vtx).transpose();
+      s.fc += fc.row(vtx).transpose();
+      s.ff += ff.row(vtx).transpose();
     }
+  }
+  return states;
+}
+
+void BodyStateWriter::add_state(int step, const Simulation& sim) {
+  std::vector<std::string> names;
+  for (const BodyModel& body : sim.model().bodies) names.push_back(body.name);
+  add_states(step, sim.time(), names, body_states(sim));
+}
+
+void BodyStateWriter::add_states(int step, double time, const std::vector<std::string>& names,
+                                 const std::vector<BodyState>& states) {
+  if (names.size() != states.size())
+    throw std::invalid_argument("bodies.csv: " + std::to_string(names.size()) + " names for " +
+                                std::to_string(states.size()) + " body states");
+  std::string& rows = csv_.rows();
+  for (std::size_t b = 0; b < states.size(); ++b) {
+    const BodyState& s = states[b];
     rows += std::to_string(step);
-    append_number(rows, sim.time());
+    append_number(rows, time);
     rows += ',';
-    if (body.name.find_first_of(",\"\r\n") == std::string::npos) {
-      rows += body.name;
+    if (names[b].find_first_of(",\"\r\n") == std::string::npos) {
+      rows += names[b];
     } else {  // RFC 4180 quoting
       rows += '"';
-      for (char c : body.name) rows += c == '"' ? std::string("\"\"") : std::string(1, c);
+      for (char c : names[b]) rows += c == '"' ? std::string("\"\"") : std::string(1, c);
       rows += '"';
     }
-    for (int i = 0; i < 3; ++i) append_number(rows, p[i]);
-    for (int i = 0; i < 3; ++i) append_number(rows, v[i]);
-    for (int i = 0; i < 3; ++i) append_number(rows, w[i]);
+    for (int i = 0; i < 3; ++i) append_number(rows, s.p[i]);
+    for (int i = 0; i < 3; ++i) append_number(rows, s.v[i]);
+    for (int i = 0; i < 3; ++i) append_number(rows, s.w[i]);
     for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) append_number(rows, A(i, j));
-    append_number(rows, kinetic);
-    for (int i = 0; i < 3; ++i) append_number(rows, body_fc[i]);
-    for (int i = 0; i < 3; ++i) append_number(rows, body_ff[i]);
+      for (int j = 0; j < 3; ++j) append_number(rows, s.A(i, j));
+    append_number(rows, s.kinetic_energy);
+    for (int i = 0; i < 3; ++i) append_number(rows, s.fc[i]);
+    for (int i = 0; i < 3; ++i) append_number(rows, s.ff[i]);
     rows += '\n';
   }
   csv_.added();

@@ -2,6 +2,7 @@
 /// @file `OUT/bodies.csv`: every body's state after every step (and at t = 0), for studies
 /// and plots that need a body's position, orientation or velocity at a time.
 
+#include <Eigen/Core>
 #include <cstddef>
 #include <filesystem>
 #include <string>
@@ -12,6 +13,21 @@
 #include <stiffsoft/io/csv_rows.hpp>
 
 namespace stiffsoft {
+
+/// One body's row of bodies.csv without its step, time and name (the columns below).
+struct BodyState {
+  Eigen::Vector3d p;          ///< centre of mass (affine) or mass-weighted mean of the nodes (soft), m
+  Eigen::Vector3d v;          ///< its velocity, m/s
+  Eigen::Vector3d w;          ///< world angular velocity of the rigid part, rad/s; nan for a soft body
+  Eigen::Matrix3d A;          ///< the affine matrix; nan for a soft body
+  double kinetic_energy = 0;  ///< J
+  Eigen::Vector3d fc;         ///< sum of the contact (barrier) forces on the body's surface, N
+  Eigen::Vector3d ff;         ///< sum of the friction forces on the body's surface, N
+};
+
+/// Every body's state in `sim`, in the model's order: what add_state() writes, taken apart
+/// from its formatting so that a writer on another thread can format it (io/recorder.hpp).
+std::vector<BodyState> body_states(const Simulation& sim);
 
 /// bodies.csv: header `step,time,body,px,py,pz,vx,vy,vz,wx,wy,wz,A00,…,A22,kinetic_energy,
 /// fcx,fcy,fcz,ffx,ffy,ffz`, then one line per body per add_state() call.
@@ -38,6 +54,11 @@ class BodyStateWriter {
   /// Appends one row per body of `sim` for step number `step` (0: the initial state); flushes
   /// when the rows held reach the bound (throwing as flush() does).
   void add_state(int step, const Simulation& sim);
+  /// Appends one row per body, `names[b]` and `states[b]` (body_states()) at step number `step`
+  /// and simulated time `time` (s); flushes as add_state() does. The sizes must match
+  /// (std::invalid_argument otherwise).
+  void add_states(int step, double time, const std::vector<std::string>& names,
+                  const std::vector<BodyState>& states);
   /// Puts every row so far on disk (header and rows the first time, then appending); throws
   /// std::runtime_error naming the file on I/O failure.
   void flush();

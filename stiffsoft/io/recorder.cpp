@@ -23,6 +23,13 @@ const std::filesystem::path& prepared_folder(const std::filesystem::path& out, c
   return out;
 }
 
+/// The bodies' names, in the model's order.
+std::vector<std::string> body_names(const Model& model) {
+  std::vector<std::string> names;
+  for (const BodyModel& body : model.bodies) names.push_back(body.name);
+  return names;
+}
+
 }  // namespace
 
 const std::vector<std::string>& Recorder::joint_columns() {
@@ -42,7 +49,8 @@ Recorder::Recorder(const std::filesystem::path& out, const SceneDescription& sce
       m_next_frame(sim.time() + m_frame_dt),
       m_frames(prepared_folder(out, scene), scene.name),
       m_stats(out / "stats.csv", step_stats_column_names()),
-      m_bodies(out / "bodies.csv") {
+      m_bodies(out / "bodies.csv"),
+      m_body_names(body_names(sim.model())) {
   if (!scene.joints.empty()) {
     m_joints.emplace(out / "joints.csv", joint_columns());
     m_joint_frames.emplace(out, scene.name);
@@ -51,11 +59,12 @@ Recorder::Recorder(const std::filesystem::path& out, const SceneDescription& sce
   write_paraview_script(paraview_script_path(out, scene.name), paraview_scene(scene.name, first, scene.gravity));
   m_frames.write(sim.time(), first);
   if (m_joint_frames) m_joint_frames->write(sim.time(), joint_frame_entries(sim));
-  m_bodies.add_state(0, sim);
+  m_bodies.add_states(0, sim.time(), m_body_names, body_states(sim));
   m_stats.flush();
   if (m_joints) m_joints->flush();
   m_bodies.flush();
-  if (m_checkpoint_every > 0) write_checkpoint();
+  if (m_checkpoint_every > 0) write_checkpoint(checkpoint_now());
+  m_frames_due = m_frames_written = m_frames.frame_count();
 }
 
 Recorder::ResumeCheck Recorder::checked_resume(const std::filesystem::path& out, const SceneDescription& scene,
@@ -95,7 +104,8 @@ Recorder::Recorder(const std::filesystem::path& out, const SceneDescription& sce
       m_next_frame(checkpoint.next_frame),
       m_frames(prepared_folder(out, scene), scene.name),
       m_stats(out / "stats.csv", step_stats_column_names()),
-      m_bodies(out / "bodies.csv") {
+      m_bodies(out / "bodies.csv"),
+      m_body_names(body_names(sim.model())) {
   if (sim.time() != 0) throw std::invalid_argument("Recorder: a run is resumed into a simulation at t = 0");
   remove_stale_temporaries(out);  // a killed writer's half-written files
   m_stats.reload(check.stats);
@@ -111,45 +121,65 @@ Recorder::Recorder(const std::filesystem::path& out, const SceneDescription& sce
   write_paraview_script(paraview_script_path(out, scene.name),
                         paraview_scene(scene.name, body_frames(sim, m_x0), scene.gravity));
   sim.restore(checkpoint.state);
+  m_frames_due = m_frames_written = m_frames.frame_count();
 }
 
 void Recorder::record(const StepStats& s, bool last) {
-  m_stats.add_row(step_stats_row(s));
-  m_bodies.add_state(s.step, m_sim);
+  m_writer.submit([this, row = step_stats_row(s), step = s.step, time = m_sim.time(),
+                   states = body_states(m_sim)] {
+    m_stats.add_row(row);
+    m_bodies.add_states(step, time, m_body_names, states);
+  });
   if (m_sim.time() >= m_next_frame - 1e-9 * m_frame_dt || last) {
     m_next_frame += m_frame_dt;  // before the frame: its checkpoint holds the next one's time
     write_frame(s.step, last);
   }
+  if (last) m_writer.wait();  // the run's files complete, for a caller that never calls finish()
 }
 
 void Recorder::write_frame(int step, bool last) {
-  m_frames.write(m_sim.time(), body_frames(m_sim, m_x0));
-  m_stats.flush();
-  if (m_joints) {
-    const std::vector<JointFrameEntry> joints = joint_frame_entries(m_sim);
-    for (std::size_t j = 0; j < joints.size(); ++j) {
-      const Eigen::Vector3d& x = joints[j].x_a;
-      const Eigen::Vector3d& f = joints[j].force;
-      m_joints->add_row({double(step), m_sim.time(), double(j), x.x(), x.y(), x.z(), f.x(), f.y(), f.z(), f.norm()});
+  ++m_frames_due;
+  std::optional<Checkpoint> checkpoint;
+  if (m_checkpoint_every > 0 && (last || m_frames_due % m_checkpoint_every == 0))
+    checkpoint = checkpoint_now();
+  std::vector<JointFrameEntry> joints;
+  if (m_joints) joints = joint_frame_entries(m_sim);
+  m_writer.submit([this, step, time = m_sim.time(), bodies = body_frames(m_sim, m_x0),
+                   joints = std::move(joints), checkpoint = std::move(checkpoint)] {
+    m_frames.write(time, bodies);
+    m_frames_written = m_frames.frame_count();
+    m_stats.flush();
+    if (m_joints) {
+      for (std::size_t j = 0; j < joints.size(); ++j) {
+        const Eigen::Vector3d& x = joints[j].x_a;
+        const Eigen::Vector3d& f = joints[j].force;
+        m_joints->add_row(
+            {double(step), time, double(j), x.x(), x.y(), x.z(), f.x(), f.y(), f.z(), f.norm()});
+      }
+      m_joints->flush();
+      m_joint_frames->write(time, joints);
     }
-    m_joints->flush();
-    m_joint_frames->write(m_sim.time(), joints);
-  }
-  m_bodies.flush();
-  if (m_checkpoint_every > 0 && (last || m_frames.frame_count() % m_checkpoint_every == 0)) write_checkpoint();
+    m_bodies.flush();
+    if (checkpoint) write_checkpoint(*checkpoint);
+  });
 }
 
-void Recorder::write_checkpoint() const {
+Checkpoint Recorder::checkpoint_now() const {
   Checkpoint c;
   c.scene_fingerprint = m_scene_fingerprint;
   c.state = m_sim.state();
   c.next_frame = m_next_frame;
+  return c;
+}
+
+void Recorder::write_checkpoint(Checkpoint c) const {
   c.frames = m_frames.frames();
   if (m_joint_frames) c.joint_frames = m_joint_frames->frames();
   stiffsoft::write_checkpoint(m_out / "checkpoint.bin", c);
 }
 
 void Recorder::finish() {
+  m_writer.wait();
   m_stats.flush();
   m_bodies.flush();
 }

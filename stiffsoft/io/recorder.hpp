@@ -8,11 +8,13 @@
 ///     recorder.finish();
 
 #include <Eigen/Core>
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
 
 #include <stiffsoft/coupling/solver/simulation.hpp>
+#include <stiffsoft/io/background_writer.hpp>
 #include <stiffsoft/io/body_state_writer.hpp>
 #include <stiffsoft/io/checkpoint.hpp>
 #include <stiffsoft/io/csv_rows.hpp>
@@ -39,6 +41,14 @@ namespace stiffsoft {
 ///   what a resumed run (`stiffsoft run --resume`) continues from.
 /// Files are flushed at every frame, before the checkpoint, so that a checkpoint never lists
 /// more than the files hold.
+///
+/// The simulation's thread only takes what each step and frame write (the stats row, the
+/// bodies' states, the frame's arrays, the checkpoint's state); formatting, compressing and
+/// writing run on a thread of the recorder's own (io/background_writer.hpp), in the same order,
+/// while the next steps are computed. Everything recorded is on disk once record() with `last`
+/// or finish() returns (or the recorder is destroyed); a write that fails throws from the next
+/// record() or finish(), with the files then holding every frame, row and checkpoint written
+/// before it.
 class Recorder {
  public:
   /// Frames between two checkpoints unless told otherwise (`stiffsoft run --checkpoint-every`).
@@ -61,12 +71,14 @@ class Recorder {
   Recorder& operator=(const Recorder&) = delete;
 
   /// Records the step `s` the simulation has just taken; writes a frame when one is due or
-  /// when `last` is true.
+  /// when `last` is true, and with `last` returns once everything recorded is on disk.
+  /// Rethrows the error of an earlier write that failed.
   void record(const StepStats& s, bool last = false);
-  /// Flushes what is not on disk yet (stats.csv, bodies.csv).
+  /// Waits for the writes in flight and flushes what is not on disk yet (stats.csv,
+  /// bodies.csv); rethrows the error of a write that failed.
   void finish();
-  /// Frames written so far.
-  int frame_count() const { return m_frames.frame_count(); }
+  /// Frames on disk so far (all those recorded once finish() has returned).
+  int frame_count() const { return m_frames_written; }
   /// OUT/NAME.pvd.
   std::filesystem::path pvd_path() const { return m_frames.pvd_path(); }
 
@@ -91,8 +103,15 @@ class Recorder {
   /// The resuming constructor, given what checked_resume() read.
   Recorder(const std::filesystem::path& out, const SceneDescription& scene, Simulation& sim, const Checkpoint& checkpoint,
            int checkpoint_every, ResumeCheck check);
+  /// Queues the frame at the simulation's present state, the rows it closes and, when due,
+  /// a checkpoint.
   void write_frame(int step, bool last);
-  void write_checkpoint() const;
+  /// A checkpoint of the simulation's present state, without the frame lists (the writer's
+  /// thread adds them once the frame is on disk).
+  Checkpoint checkpoint_now() const;
+  /// Writes `c` with the frame lists of the frames on disk (on the writer's thread, or before
+  /// it has jobs).
+  void write_checkpoint(Checkpoint c) const;
 
   const Simulation& m_sim;
   std::filesystem::path m_out;
@@ -106,6 +125,12 @@ class Recorder {
   BodyStateWriter m_bodies;
   std::optional<StatsWriter> m_joints;
   std::optional<JointFrameWriter> m_joint_frames;
+  std::vector<std::string> m_body_names;  ///< bodies.csv's body column, in the model's order
+  int m_frames_due = 0;                   ///< frames recorded (queued or on disk)
+  std::atomic<int> m_frames_written = 0;  ///< frames on disk
+  /// Last, so that it is destroyed first: its destructor runs the jobs still queued, which use
+  /// the writers above.
+  BackgroundWriter m_writer;
 };
 
 }  // namespace stiffsoft
