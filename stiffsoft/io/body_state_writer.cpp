@@ -74,10 +74,14 @@ std::vector<BodyState> body_states(const Simulation& sim) {
   return states;
 }
 
-void BodyStateWriter::add_state(int step, const Simulation& sim) {
+std::vector<std::string> body_names(const Model& model) {
   std::vector<std::string> names;
-  for (const BodyModel& body : sim.model().bodies) names.push_back(body.name);
-  add_states(step, sim.time(), names, body_states(sim));
+  for (const BodyModel& body : model.bodies) names.push_back(body.name);
+  return names;
+}
+
+void BodyStateWriter::add_state(int step, const Simulation& sim) {
+  add_states(step, sim.time(), body_names(sim.model()), body_states(sim));
 }
 
 void BodyStateWriter::add_states(int step, double time, const std::vector<std::string>& names,

@@ -29,6 +29,9 @@ struct BodyState {
 /// from its formatting so that a writer on another thread can format it (io/recorder.hpp).
 std::vector<BodyState> body_states(const Simulation& sim);
 
+/// The bodies' names, in the model's order: bodies.csv's `body` column.
+std::vector<std::string> body_names(const Model& model);
+
 /// bodies.csv: header `step,time,body,px,py,pz,vx,vy,vz,wx,wy,wz,A00,…,A22,kinetic_energy,
 /// fcx,fcy,fcz,ffx,ffy,ffz`, then one line per body per add_state() call.
 /// - Affine (and fixed, kinematic) bodies: p is the centre of mass (m), v its velocity (m/s),

@@ -23,13 +23,6 @@ const std::filesystem::path& prepared_folder(const std::filesystem::path& out, c
   return out;
 }
 
-/// The bodies' names, in the model's order.
-std::vector<std::string> body_names(const Model& model) {
-  std::vector<std::string> names;
-  for (const BodyModel& body : model.bodies) names.push_back(body.name);
-  return names;
-}
-
 }  // namespace
 
 const std::vector<std::string>& Recorder::joint_columns() {
