@@ -310,7 +310,11 @@ void bind_scene(py::module_& m) {
                      "a direction CCD cuts is solved again with one-sided springs on the pairs entering d-hat")
       .def_readwrite("linear", &SolverDescription::linear, "the linear solver ('auto', 'cholmod', 'petsc', 'petsc:KSP[:PC]')")
       .def_readwrite("krylov_rtol_max", &SolverDescription::krylov_rtol_max, "largest relative residual of a Krylov solve")
-      .def_readwrite("rigidity_bound", &SolverDescription::rigidity_bound, "largest |A^T A - I|_F of an affine body before the run stops");
+      .def_readwrite("rigidity_bound", &SolverDescription::rigidity_bound, "largest |A^T A - I|_F of an affine body before the run stops")
+      .def_readwrite("sleep_time", &SolverDescription::sleep_time,
+                     "seconds at rest after which an island of affine bodies sleeps (s); 0: never")
+      .def_readwrite("sleep_speed", &SolverDescription::sleep_speed,
+                     "speed below which a body rests (m/s); None: the Newton tolerance");
   def_enum(solver, "barrier_hessian", &SolverDescription::barrier_hessian,
            "BarrierHessian (or its name): projected or gauss_newton");
 

@@ -232,6 +232,7 @@ void bind_simulation(py::module_& m) {
       .def_readonly("kappa", &StepStats::kappa, "barrier stiffness at the end of the step")
       .def_readonly("joint_error", &StepStats::joint_error, "largest violation of the joints' equalities (m)")
       .def_readonly("joint_force", &StepStats::joint_force, "largest joint force (N)")
+      .def_readonly("sleeping_bodies", &StepStats::sleeping_bodies, "bodies asleep at the end of the step")
       .def_readonly("times", &StepStats::times, "PhaseTimes: seconds per phase")
       .def_readonly("seconds", &StepStats::seconds, "wall time of the step (s)")
       .def("as_dict", [](const StepStats& s) {
@@ -261,16 +262,19 @@ void bind_simulation(py::module_& m) {
       .def(py::pickle(
           [](const SimulationState& s) {
             return py::make_tuple(s.time, s.step, s.q, s.qdot, s.q_prev, s.qdot_prev, s.kappa,
-                                  s.kappa_balanced, s.solver.decided_nonzeros, s.solver.krylov);
+                                  s.kappa_balanced, s.solver.decided_nonzeros, s.solver.krylov,
+                                  s.sleeping.rest_time, s.sleeping.island);
           },
           [](const py::tuple& t) {
-            // 8 fields: a pickle from before the solver's choice was kept (the solver chooses anew).
-            if (t.size() != 10 && t.size() != 8)
-              throw std::runtime_error("State: a pickle of 10 fields was expected");
+            // 8 fields: a pickle from before the solver's choice was kept (the solver chooses anew);
+            // 10: from before sleeping bodies (nothing sleeps on restore).
+            if (t.size() != 12 && t.size() != 10 && t.size() != 8)
+              throw std::runtime_error("State: a pickle of 12 fields was expected");
             SimulationState s{t[0].cast<double>(), t[1].cast<int>(), t[2].cast<Eigen::VectorXd>(),
                               t[3].cast<Eigen::VectorXd>(), t[4].cast<Eigen::VectorXd>(),
-                              t[5].cast<Eigen::VectorXd>(), t[6].cast<double>(), t[7].cast<bool>(), {}};
-            if (t.size() == 10) s.solver = {t[8].cast<long>(), t[9].cast<bool>()};
+                              t[5].cast<Eigen::VectorXd>(), t[6].cast<double>(), t[7].cast<bool>(), {}, {}};
+            if (t.size() >= 10) s.solver = {t[8].cast<long>(), t[9].cast<bool>()};
+            if (t.size() == 12) s.sleeping = {t[10].cast<Eigen::VectorXd>(), t[11].cast<Eigen::VectorXd>()};
             return s;
           }));
 

@@ -13,7 +13,7 @@
 namespace stiffsoft::peers {
 
 std::vector<std::string> available_engines() {
-  std::vector<std::string> names{"stiffsoft", "stiffsoft-coarse"};
+  std::vector<std::string> names{"stiffsoft", "stiffsoft-coarse", "stiffsoft-sleep"};
 #ifdef STIFFSOFT_WITH_BULLET
   names.push_back("bullet_mesh");
   names.push_back("bullet");
@@ -33,6 +33,11 @@ std::string available_engine_list() {
 std::unique_ptr<Engine> make_engine(const std::string& name, const PeerScene& scene, const EngineOptions& options) {
   if (name == "stiffsoft") return std::make_unique<StiffsoftEngine>(scene, scene.settings, name);
   if (name == "stiffsoft-coarse") return std::make_unique<StiffsoftEngine>(scene, coarse_settings(scene), name);
+  if (name == "stiffsoft-sleep") {
+    SimulationSettings settings = scene.settings;
+    settings.sleep_time = options.sleep_time;
+    return std::make_unique<StiffsoftEngine>(scene, settings, name);
+  }
 #ifdef STIFFSOFT_WITH_BULLET
   if (name == "bullet" || name == "bullet_mesh") {
     BulletSettings settings;
@@ -52,7 +57,6 @@ std::unique_ptr<Engine> make_engine(const std::string& name, const PeerScene& sc
     return std::make_unique<MujocoEngine>(scene, sizes);
   }
 #endif
-  (void)options;
   throw std::invalid_argument("engine '" + name + "' is not available in this build (available: " +
                               available_engine_list() + ")");
 }

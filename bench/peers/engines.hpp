@@ -15,10 +15,12 @@ struct EngineOptions {
   double bullet_margin = 0;  ///< Bullet collision margin of hulls and meshes (m); ≤ 0: half the scene's d̂
   int mujoco_nconmax = 0;    ///< MuJoCo contact buffer; ≤ 0: 4 per dynamic geom + 200
   int mujoco_njmax = 0;      ///< MuJoCo constraint rows; ≤ 0: 4 per contact (pyramidal cone, condim 3)
+  double sleep_time = 2.0;   ///< stiffsoft-sleep's solver.sleep_time (s): Bullet's own deactivation time
 };
 
 /// "stiffsoft" (the scene's settings), "stiffsoft-coarse" (coarse_settings: libuipc's friction
-/// smoothing and Newton tolerance) and the peers compiled in ("bullet_mesh": Bullet with every
+/// smoothing and Newton tolerance), "stiffsoft-sleep" (the scene's settings with bodies at rest
+/// put to sleep after EngineOptions::sleep_time, as Bullet does) and the peers compiled in ("bullet_mesh": Bullet with every
 /// dynamic body a triangle mesh, "bullet": Bullet with convex hulls, "mujoco"), in that order.
 std::vector<std::string> available_engines();
 

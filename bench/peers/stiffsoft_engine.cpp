@@ -25,7 +25,13 @@ std::string StiffsoftEngine::settings() const {
                 "%s, d^ = %.3g m, mu = %.3g, eps_v = %.3g m/s, kappa %s, Newton tol. %.3g m/s, max %d it., %s",
                 s.integrator == Integrator::BackwardEuler ? "backward Euler" : "BDF-2", s.dhat, s.mu, s.eps_v,
                 s.kappa ? "fixed" : "adaptive", s.tolerance, s.max_iterations, s.linear_solver.c_str());
-  return line;
+  std::string text = line;
+  if (s.sleep_time > 0) {
+    std::snprintf(line, sizeof line, ", bodies sleep after %.3g s below %.3g m/s", s.sleep_time,
+                  s.sleep_speed.value_or(s.tolerance));
+    text += line;
+  }
+  return text;
 }
 
 void StiffsoftEngine::step() {

@@ -14,8 +14,8 @@ namespace stiffsoft {
 namespace {
 
 /// Format and version, the file's first bytes. Version 2 added the linear solver's memory
-/// (SimulationState::solver).
-constexpr char kTag[] = "stiffsoft checkpoint 2\n";
+/// (SimulationState::solver), version 3 the sleeping bodies (SimulationState::sleeping).
+constexpr char kTag[] = "stiffsoft checkpoint 3\n";
 
 /// Appends raw bytes of values (native byte order: a checkpoint is read back on the same machine).
 class Writer {
@@ -115,6 +115,8 @@ void write_checkpoint(const std::filesystem::path& file, const Checkpoint& c) {
   w.put(std::uint8_t(c.state.kappa_balanced));
   w.put(std::int64_t(c.state.solver.decided_nonzeros));
   w.put(std::uint8_t(c.state.solver.krylov));
+  w.put(c.state.sleeping.rest_time);
+  w.put(c.state.sleeping.island);
   w.put(c.next_frame);
   w.put(c.frames);
   w.put(c.joint_frames);
@@ -149,6 +151,8 @@ Checkpoint read_checkpoint(const std::filesystem::path& file) {
   c.state.kappa_balanced = r.get<std::uint8_t>() != 0;
   c.state.solver.decided_nonzeros = long(r.get<std::int64_t>());
   c.state.solver.krylov = r.get<std::uint8_t>() != 0;
+  c.state.sleeping.rest_time = r.get_vector();
+  c.state.sleeping.island = r.get_vector();
   c.next_frame = r.get<double>();
   c.frames = r.get_frame_list();
   c.joint_frames = r.get_frame_list();

@@ -18,6 +18,7 @@ void resolve_relative_defaults(SceneDescription& scene, const Model& model) {
   if (!scene.contact.dhat) scene.contact.dhat = default_dhat(model);
   if (!scene.contact.eps_v) scene.contact.eps_v = 1e-3 * L;
   if (!scene.solver.tolerance) scene.solver.tolerance = 1e-2 * L;
+  if (!scene.solver.sleep_speed) scene.solver.sleep_speed = scene.solver.tolerance;
   if (!scene.output.frame_dt) scene.output.frame_dt = std::max(scene.time.dt, 1.0 / 60.0);
   for (std::size_t j = 0; j < scene.joints.size() && j < model.joints.size(); ++j)
     if (!scene.joints[j].limit_stiffness) scene.joints[j].limit_stiffness = model.joints[j].limit_stiffness;
@@ -57,6 +58,8 @@ SimulationSettings simulation_settings(const SceneDescription& scene, const std:
   s.linear_solver = scene.solver.linear;
   s.krylov_rtol_max = scene.solver.krylov_rtol_max;
   s.rigidity_bound = scene.solver.rigidity_bound;
+  s.sleep_time = scene.solver.sleep_time;
+  s.sleep_speed = scene.solver.sleep_speed;
   validate(s);
   return s;
 }
@@ -67,6 +70,10 @@ PreparedScene prepare_checked(SceneDescription scene, const std::filesystem::pat
   const bool dhat_given = scene.contact.dhat.has_value();
   resolve_relative_defaults(scene, model);
   if (scene.contact.check_start_gaps) check_start_gaps(model, scene.contact.dhat.value(), dhat_given, file.string());
+  if (scene.solver.sleep_time > 0 && !scene.joints.empty())
+    throw SceneError(file.string(), "solver.sleep_time",
+                     "bodies cannot sleep in a scene with joints (it has " + std::to_string(scene.joints.size()) +
+                         "): expected 0");
   SimulationSettings settings = simulation_settings(scene, file.string());
   return {std::move(scene), std::move(model), std::move(settings)};
 }

@@ -61,6 +61,8 @@ struct SolverDescription {
   std::string linear = SimulationSettings{}.linear_solver;  ///< linear solver backend (see make_linear_solver())
   double krylov_rtol_max = ForcingTermSettings{}.eta_max;  ///< η_max: largest relative residual a Krylov solve may stop at
   double rigidity_bound = SimulationSettings{}.rigidity_bound;  ///< largest ‖AᵀA − I‖_F an affine body may reach before the run stops
+  double sleep_time = SimulationSettings{}.sleep_time;  ///< t_s (s): affine bodies at rest this long sleep; 0: never
+  std::optional<double> sleep_speed;  ///< v_s (m/s): the speed below which a body rests; default the tolerance ε_d
 };
 
 /// `output`: what is written and how often.

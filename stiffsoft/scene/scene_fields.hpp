@@ -99,6 +99,8 @@ void fields(const auto& v, Either<SolverDescription> auto& s) {
   v("linear", s.linear);
   v("krylov_rtol_max", s.krylov_rtol_max);
   v("rigidity_bound", s.rigidity_bound);
+  v("sleep_time", s.sleep_time);
+  v("sleep_speed", s.sleep_speed);
 }
 
 void fields(const auto& v, Either<OutputDescription> auto& o) { v("frame_dt", o.frame_dt); }

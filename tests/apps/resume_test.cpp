@@ -143,6 +143,23 @@ TEST(Resume, KilledHybridBdf2SceneWithFrictionResumesToTheSameFiles) {
   fs::remove_all(dir);
 }
 
+TEST(Resume, KilledSceneWithSleepingBodiesResumesToTheSameFiles) {
+  const fs::path dir = temporary_folder("resume_sleep");
+  nlohmann::ordered_json j = nlohmann::ordered_json::parse(read_text(kScenes / "box_stack.json"));
+  j["solver"]["sleep_time"] = 0.2;
+  const fs::path scene = dir / "box_stack.json";
+  std::ofstream(scene) << j.dump(1);
+  // The run is killed at its 70th frame (step 117 of h = 0.01 at 60 frames a second): the stack
+  // must be asleep by then, for the checkpoint to carry sleeping bodies.
+  ASSERT_EQ(run_stiffsoft("run " + scene.string() + " -o " + (dir / "probe").string() + " --steps 110", dir / "probe.log"), 0)
+      << read_text(dir / "probe.log");
+  const std::vector<double> sleeping = csv_column(dir / "probe" / "stats.csv", "sleeping_bodies");
+  ASSERT_FALSE(sleeping.empty());
+  EXPECT_GT(sleeping.back(), 0) << "the stack does not sleep by step 110";
+  expect_resume_matches(scene, 200, 70);
+  fs::remove_all(dir);
+}
+
 TEST(Resume, KilledJointedSceneResumesToTheSameFiles) { expect_resume_matches(kScenes / "ragdoll_steps.json", 240, 10); }
 
 TEST(Resume, RefusesAChangedSceneAnotherVersionsFilesAMissingAndADamagedCheckpoint) {

@@ -83,9 +83,17 @@ Simulation::Simulation(Model model, const SimulationSettings& settings)
     if (body.block >= 0 && body.motion == Motion::Kinematic) m_prescribed_blocks.push_back(body.block);
   for (int i = 0; i < nodes.size(); ++i)
     if (nodes.motion[i] == Motion::Kinematic) m_prescribed_blocks.push_back(nodes.block[i]);
+  if (settings.sleep_time > 0) {
+    if (!m_model.joints.empty())
+      throw std::invalid_argument("SimulationSettings.sleep_time: bodies cannot sleep in a scene with joints (it has " +
+                                  std::to_string(m_model.joints.size()) + "); set it to 0");
+    m_sleeping.emplace(m_model, settings.sleep_time, settings.sleep_speed.value_or(settings.tolerance));
+  }
 }
 
 StepStats Simulation::step() {
+  m_slept = m_sleeping && m_sleeping->all_asleep();
+  if (m_slept) return sleeping_step();
   const auto start = std::chrono::steady_clock::now();
   m_times = PhaseTimes{};
   const double h = m_settings.h;
@@ -98,7 +106,13 @@ StepStats Simulation::step() {
   for (int i = 0; i < nodes.size(); ++i)
     if (nodes.motion[i] == Motion::Kinematic)
       q_tilde.segment<3>(nodes.dof[i]) = (nodes.X.row(i) + (m_time + h) * nodes.velocity.row(i)).transpose();
-  m_inertia.set_target(q_tilde);
+  // A sleeping body's target is where it is (held there, it has no other).
+  const auto still_target = [&] {
+    Eigen::VectorXd target = q_tilde;
+    if (m_sleeping) copy_blocks(m_sleeping->held_blocks(), m_q, target);
+    return target;
+  };
+  m_inertia.set_target(still_target());
 
   // Lag friction and balance κ at the start-of-step configuration.
   const Eigen::MatrixX3d x_n = m_model.surface(m_q);
@@ -137,6 +151,11 @@ StepStats Simulation::step() {
   ns.forcing.eta_max = m_settings.krylov_rtol_max;
   ns.observer = m_newton_observer;
   Eigen::VectorXd q_new = initial_guess(q_tilde, c_n);
+  if (m_sleeping) {
+    if (!m_sleeping->wake_near_moves(x_n, m_model.surface(q_new), m_settings.dhat, h).empty())
+      m_inertia.set_target(still_target());
+    ns.held_blocks = m_sleeping->held_blocks();
+  }
   const auto minimize = [&] {
     return m_prescribed_blocks.empty()
                ? newton_minimize(m_model, terms, q_new, *m_solver, ns, m_times, reduced_basis(), &m_hessian)
@@ -159,9 +178,11 @@ StepStats Simulation::step() {
     accumulate(stats.newton, minimize());
   }
   if (m_basis) q_new = m_basis->project(q_new);  // removes round-off drift along the equalities
+  copy_blocks(ns.held_blocks, m_q, q_new);      // exactly where they were, whatever the line search's round-off
   check_rigidity(q_new);
 
-  const Eigen::VectorXd qdot_new = updated_qdot(m_settings.integrator, h, q_new, m_q, m_q_prev);
+  Eigen::VectorXd qdot_new = updated_qdot(m_settings.integrator, h, q_new, m_q, m_q_prev);
+  for (int b : ns.held_blocks) qdot_new.segment(m_model.blocks[b].offset, m_model.blocks[b].size).setZero();
   m_q_prev = m_q;
   m_qdot_prev = m_qdot;
   m_q = q_new;
@@ -169,25 +190,62 @@ StepStats Simulation::step() {
   m_time += h;
   ++m_step;
 
-  stats.step = m_step;
-  stats.time = m_time;
   const Eigen::MatrixX3d x = m_model.surface(m_q);
-  stats.contacts = int(m_barrier.constraints().size());
-  stats.smallest_distance = m_barrier.min_active_distance({m_q, x});
-  stats.kappa = m_barrier.kappa();
+  if (m_sleeping) {
+    m_barrier.update({m_q, x});
+    for (int b : m_sleeping->end_step(m_barrier.constraints(), m_model.surface_step(m_qdot), h)) {
+      const BodyModel& body = m_model.bodies[b];
+      m_qdot.segment<12>(body.dof).setZero();
+      m_qdot_prev.segment<12>(body.dof).setZero();
+      m_q_prev.segment<12>(body.dof) = m_q.segment<12>(body.dof);
+    }
+  }
   if (m_friction) {
     const FrictionTerm::StickSlip stick_slip = m_friction->stick_slip({m_q, x});
     stats.sticking = stick_slip.sticking;
     stats.sliding = stick_slip.sliding;
     stats.stick_slip_flips = m_friction->stick_slip_flips();
   }
-  for (double v : joint_violations(m_constraints, m_q, int(m_model.joints.size())))
-    stats.joint_error = std::max(stats.joint_error, v);
   if (!m_model.joints.empty()) {
     for (EnergyTerm* t : terms) t->update({m_q, x});
     compute_joint_forces(terms, {m_q, x});
     for (const Eigen::Vector3d& f : m_joint_forces) stats.joint_force = std::max(stats.joint_force, f.norm());
   }
+  finish_stats(stats, x, start);
+  return stats;
+}
+
+StepStats Simulation::sleeping_step() {
+  const auto start = std::chrono::steady_clock::now();
+  m_times = PhaseTimes{};
+  m_q_prev = m_q;
+  m_qdot_prev = m_qdot;
+  m_time += m_settings.h;
+  ++m_step;
+  StepStats stats;
+  stats.newton.converged = true;
+  const Eigen::MatrixX3d x = m_model.surface(m_q);
+  m_barrier.update({m_q, x});  // the contacts stats reports (already built but after a restore)
+  finish_stats(stats, x, start);
+  return stats;
+}
+
+void Simulation::copy_blocks(const std::vector<int>& blocks, const Eigen::VectorXd& from, Eigen::VectorXd& v) const {
+  for (int b : blocks) {
+    const DofBlock& block = m_model.blocks[b];
+    v.segment(block.offset, block.size) = from.segment(block.offset, block.size);
+  }
+}
+
+void Simulation::finish_stats(StepStats& stats, const Eigen::MatrixX3d& x, std::chrono::steady_clock::time_point start) {
+  stats.step = m_step;
+  stats.time = m_time;
+  stats.contacts = int(m_barrier.constraints().size());
+  stats.smallest_distance = m_barrier.min_active_distance({m_q, x});
+  stats.kappa = m_barrier.kappa();
+  for (double v : joint_violations(m_constraints, m_q, int(m_model.joints.size())))
+    stats.joint_error = std::max(stats.joint_error, v);
+  const SoftNodes& nodes = m_model.nodes;
   for (int i = 0; i < nodes.size(); ++i) {
     if (nodes.motion[i] != Motion::Dynamic) continue;
     const Eigen::Vector3d v = m_qdot.segment<3>(nodes.dof[i]);
@@ -210,9 +268,9 @@ StepStats Simulation::step() {
     stats.inverted_per_body = m_elasticity.inverted_per_body(m_q);
     stats.inverted_tets = std::accumulate(stats.inverted_per_body.begin(), stats.inverted_per_body.end(), 0);
   }
+  if (m_sleeping) stats.sleeping_bodies = m_sleeping->sleeping_count();
   stats.times = m_times;
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return stats;
 }
 
 double Simulation::friction_lag_error(const Configuration& c) {
@@ -231,8 +289,16 @@ double Simulation::friction_lag_error(const Configuration& c) {
 }
 
 SimulationState Simulation::state() const {
-  return {m_time, m_step, m_q, m_qdot, m_q_prev, m_qdot_prev, m_barrier.kappa(), m_barrier.kappa_balanced(),
-          m_solver->memory()};
+  return {m_time,
+          m_step,
+          m_q,
+          m_qdot,
+          m_q_prev,
+          m_qdot_prev,
+          m_barrier.kappa(),
+          m_barrier.kappa_balanced(),
+          m_solver->memory(),
+          m_sleeping ? m_sleeping->state() : Sleeping::State{}};
 }
 
 void Simulation::restore(const SimulationState& s) {
@@ -248,6 +314,7 @@ void Simulation::restore(const SimulationState& s) {
   m_qdot_prev = s.qdot_prev;
   m_barrier.restore_stiffness(s.kappa, s.kappa_balanced);
   m_solver->restore_memory(s.solver);
+  if (m_sleeping) m_sleeping->restore(s.sleeping);
 }
 
 Eigen::VectorXd Simulation::initial_guess(const Eigen::VectorXd& q_tilde, const Configuration& c_n) const {
@@ -272,6 +339,7 @@ Eigen::VectorXd Simulation::initial_guess(const Eigen::VectorXd& q_tilde, const 
     const Eigen::Vector3d omega = abd::angular_velocity(qb, m_qdot.segment<12>(body.dof));
     q_start.segment<9>(body.dof + 3) = abd::rigid_motion(qb, Eigen::Vector3d::Zero(), omega, m_settings.h).tail<9>();
   }
+  if (m_sleeping) copy_blocks(m_sleeping->held_blocks(), m_q, q_start);
   // Joints: onto their linear equalities (qⁿ satisfies them, so the whole segment does), and
   // not across a joint limit.
   if (m_basis) q_start = m_basis->project(q_start);
@@ -284,8 +352,8 @@ Eigen::VectorXd Simulation::initial_guess(const Eigen::VectorXd& q_tilde, const 
 
 NewtonReport Simulation::follow_paths(const std::vector<EnergyTerm*>& terms, const Eigen::VectorXd& q_tilde,
                                       const NewtonSettings& ns, Eigen::VectorXd& q) {
-  NewtonSettings held = ns;
-  held.held_blocks = m_prescribed_blocks;
+  NewtonSettings held = ns;  // the sleeping bodies' blocks, and the prescribed ones
+  held.held_blocks.insert(held.held_blocks.end(), m_prescribed_blocks.begin(), m_prescribed_blocks.end());
   if (!m_basis) {
     // The initial guess reached the path (to the round-off of qⁿ + 1·(q̃ − qⁿ)), or the
     // prescribed blocks alone can move there from qⁿ.
@@ -454,7 +522,7 @@ Eigen::MatrixX3d Simulation::contact_forces() const {
 
 Eigen::MatrixX3d Simulation::friction_forces() const {
   const Eigen::MatrixX3d x = m_model.surface(m_q);
-  if (!m_friction) return Eigen::MatrixX3d::Zero(x.rows(), 3);
+  if (!m_friction || m_slept) return Eigen::MatrixX3d::Zero(x.rows(), 3);
   const double scale = integrator_beta(m_settings.integrator) * m_settings.h * m_settings.h;
   return m_friction->vertex_forces({m_q, x}) / scale;
 }

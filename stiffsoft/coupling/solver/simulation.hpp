@@ -1,6 +1,7 @@
 #pragma once
 /// @file Time stepping of a model: one incremental-potential minimisation per step.
 
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -16,6 +17,7 @@
 #include <stiffsoft/coupling/solver/newton.hpp>
 #include <stiffsoft/coupling/solver/physics_error.hpp>
 #include <stiffsoft/coupling/solver/simulation_settings.hpp>
+#include <stiffsoft/coupling/solver/sleeping.hpp>
 #include <stiffsoft/coupling/solver/step_stats.hpp>
 #include <stiffsoft/coupling/terms/barrier_term.hpp>
 #include <stiffsoft/coupling/terms/damping_term.hpp>
@@ -36,6 +38,7 @@ struct SimulationState {
   double kappa = 0;                         ///< the barrier's adaptive stiffness κ
   bool kappa_balanced = false;              ///< whether κ was balanced at first contact already
   LinearSolverMemory solver;                ///< the linear solver's choices so far ("auto"'s backend)
+  Sleeping::State sleeping;                 ///< rest times and sleeping islands (empty vectors when nothing may sleep)
 };
 
 /// A model advanced in time.
@@ -48,7 +51,7 @@ class Simulation {
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
   /// Advances by one step h. Kinematic bodies and prescribed soft nodes end the step exactly on
-  /// their path. Throws PhysicsError (physics_error.hpp), leaving the state at the last step,
+  /// their path; sleeping bodies (SimulationSettings::sleep_time) stay where they are. Throws PhysicsError (physics_error.hpp), leaving the state at the last step,
   /// when a prescribed motion cannot be followed without intersection or an affine body's
   /// rigidity error ‖AᵀA − I‖_F would exceed SimulationSettings::rigidity_bound.
   StepStats step();
@@ -58,7 +61,8 @@ class Simulation {
   /// The state now (a copy).
   SimulationState state() const;
   /// Continues from `s`, taken from a Simulation of the same model and settings;
-  /// std::invalid_argument when its vectors do not match this model's DOFs.
+  /// std::invalid_argument when its vectors do not match this model's DOFs. A state without
+  /// sleeping bodies' data (empty vectors) wakes every body.
   void restore(const SimulationState& s);
   /// Simulated time (s).
   double time() const { return m_time; }
@@ -76,7 +80,8 @@ class Simulation {
   Eigen::MatrixX3d surface_velocity() const { return m_model.surface_step(m_qdot); }
   /// Contact (barrier) force on each surface vertex at the end of the last step, |V|×3 (N).
   Eigen::MatrixX3d contact_forces() const;
-  /// Friction force on each surface vertex over the last step, |V|×3 (N); zero without friction.
+  /// Friction force on each surface vertex over the last step, |V|×3 (N); zero without friction
+  /// and after a step in which every body slept (nothing slid).
   Eigen::MatrixX3d friction_forces() const;
   /// Positions of the soft bodies' nodes, |N|×3 (m).
   Eigen::MatrixX3d node_positions() const { return m_model.node_positions(m_q); }
@@ -140,6 +145,13 @@ class Simulation {
   PhysicsError path_blocked(const Eigen::VectorXd& q, const Eigen::VectorXd& q_tilde) const;
   /// Throws PhysicsError when an affine body of q exceeds the rigidity bound.
   void check_rigidity(const Eigen::VectorXd& q) const;
+  /// The step when every dynamic body sleeps: nothing moves, no Newton iteration.
+  StepStats sleeping_step();
+  /// The DOFs of `blocks` in v set to those of `from`.
+  void copy_blocks(const std::vector<int>& blocks, const Eigen::VectorXd& from, Eigen::VectorXd& v) const;
+  /// Fills what stats reports of the state at the end of a step (contacts, energies, momentum,
+  /// rigidity, soft elements, joints' error, sleep) and its wall time; x: the surface at q.
+  void finish_stats(StepStats& stats, const Eigen::MatrixX3d& x, std::chrono::steady_clock::time_point start);
   /// Fills m_joint_forces at the end of a step: `terms` are the step's energy terms, already
   /// updated at q.
   void compute_joint_forces(const std::vector<EnergyTerm*>& terms, const Configuration& c);
@@ -161,6 +173,8 @@ class Simulation {
   std::vector<Eigen::Vector3d> m_joint_forces;
   std::function<void(const NewtonIterate&)> m_newton_observer;
   std::vector<int> m_prescribed_blocks;  // DOF blocks of kinematic bodies and prescribed soft nodes
+  std::optional<Sleeping> m_sleeping;     // with sleep_time > 0
+  bool m_slept = false;                   // whether the last step was a sleeping_step()
   Eigen::VectorXd m_q, m_qdot, m_q_prev, m_qdot_prev, m_gravity_q;
   double m_time = 0;
   int m_step = 0;

@@ -56,6 +56,8 @@ void validate(const SimulationSettings& s) {
     if (p.body_b < 0) fail(at + ".body_b", "must be a body index ≥ 0", p.body_b);
     non_negative(at + ".damping", p.damping);
   }
+  non_negative("sleep_time", s.sleep_time);
+  if (s.sleep_speed) positive("sleep_speed", *s.sleep_speed);
 }
 
 BarrierSettings barrier_settings(const Model& model, const SimulationSettings& s) {

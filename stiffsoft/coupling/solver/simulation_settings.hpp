@@ -45,10 +45,12 @@ struct SimulationSettings {
   double rigidity_bound = 1e-2;                   ///< largest rigidity error ‖AᵀA − I‖_F an affine body may reach (PhysicsError past it)
   double contact_damping = 0;                     ///< lagged Rayleigh damping k_d of contacts (s); 0: none
   std::vector<ContactPairDamping> contact_pair_damping;  ///< k_d per body pair, replacing contact_damping there
+  double sleep_time = 0;                          ///< t_s: an island of affine bodies at rest this long sleeps (Sleeping, s); 0: none sleeps
+  std::optional<double> sleep_speed;              ///< v_s: the speed below which a body rests (m/s); unset: the tolerance ε_d
 };
 
 /// Checks code-built settings as the scene loader checks a scene file: h, d̂, ε_v, ε_d, gap_tolerance,
-/// kinematic_weight and rigidity_bound > 0 and finite, μ and contact damping ≥ 0, κ > 0 when set,
+/// kinematic_weight and rigidity_bound > 0 and finite, μ, contact damping and sleep_time ≥ 0, κ and sleep_speed > 0 when set,
 /// max_iterations and friction_iterations ≥ 1, release_hessian in (0, 1], krylov_rtol_max in (0, 1), gravity finite, a known linear solver, pair
 /// damping on bodies ≥ 0 with k_d ≥ 0. Throws std::invalid_argument naming the first bad
 /// setting and what was expected (`SimulationSettings.dhat: must be > 0 (got -1)`).

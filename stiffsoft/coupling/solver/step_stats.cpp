@@ -34,6 +34,7 @@ const std::vector<StepStatsColumn>& step_stats_columns() {
       {"kappa", [](const StepStats& s) { return s.kappa; }},
       {"joint_error", [](const StepStats& s) { return s.joint_error; }},
       {"joint_force", [](const StepStats& s) { return s.joint_force; }},
+      {"sleeping_bodies", [](const StepStats& s) { return double(s.sleeping_bodies); }},
       {"seconds_broad_phase", [](const StepStats& s) { return s.times.broad_phase; }},
       {"seconds_ccd", [](const StepStats& s) { return s.times.ccd; }},
       {"seconds_assembly", [](const StepStats& s) { return s.times.assembly; }},

@@ -38,6 +38,7 @@ struct StepStats {
   double kappa = 0;              ///< barrier stiffness at the end of the step
   double joint_error = 0;        ///< largest violation of the joints' linear equalities at the end of the step (m)
   double joint_force = 0;        ///< largest joint force magnitude at the end of the step (N), see Simulation::joint_forces()
+  int sleeping_bodies = 0;       ///< bodies asleep at the end of the step (SimulationSettings::sleep_time)
   PhaseTimes times;              ///< seconds per phase
   double seconds = 0;            ///< wall time of the whole step (s)
 };

@@ -1,0 +1,74 @@
+#pragma once
+/// @file Bodies at rest taken out of the steps, as rigid-body engines put them to sleep (Bullet's
+/// deactivation): an island of dynamic affine bodies in contact sleeps once every body in it has
+/// moved no surface point faster than a speed v_s for a time t_s while touching something. A
+/// sleeping body is held where it is, its velocity zero, until a moving body's swept box comes
+/// near it or an awake body touches it: then its whole island wakes, and rests t_s again before
+/// it sleeps again. A step in which every dynamic body sleeps does no Newton iteration. What it
+/// trades (docs/sleeping.md): a sleeping body no longer creeps (friction's slip below ε_v, a pile
+/// settling slower than v_s), and a body that reaches a sleeping one within a step without being
+/// predicted to meets it held for that step.
+
+#include <Eigen/Core>
+#include <stiffsoft/coupling/contact/constraint_set.hpp>
+#include <vector>
+
+namespace stiffsoft {
+
+struct Model;
+
+/// Which bodies sleep, and for how long each awake one has been at rest.
+class Sleeping {
+ public:
+  /// What a Simulation carries from step to step (and a checkpoint keeps), per body of the model.
+  struct State {
+    Eigen::VectorXd
+        rest_time;  ///< seconds the body has been touching and slower than v_s (kept while it sleeps)
+    Eigen::VectorXd island;  ///< the sleeping island's label (its smallest body index), −1 awake
+  };
+
+  /// Nobody asleep. `time` t_s (s) > 0, `speed` v_s (m/s) > 0.
+  Sleeping(const Model& model, double time, double speed);
+
+  /// The state now (a copy).
+  const State& state() const { return m_state; }
+  /// Continues from `s`; empty vectors (a state saved without sleeping) wake every body and
+  /// restart its rest time; std::invalid_argument when they have neither none nor one entry per body.
+  void restore(const State& s);
+
+  /// Whether body b sleeps.
+  bool asleep(int b) const { return m_state.island[b] >= 0; }
+  /// Number of sleeping bodies.
+  int sleeping_count() const;
+  /// Whether every dynamic affine body sleeps and no DOF is left to move (no soft node, no
+  /// kinematic body): a step has nothing to solve.
+  bool all_asleep() const;
+  /// The DOF blocks of the sleeping bodies, in body order.
+  std::vector<int> held_blocks() const;
+
+  /// At a step's start, before Newton: wakes every sleeping island a moving body may reach. A
+  /// body moves when it is awake, carries DOFs (a kinematic body too) and some surface point of it
+  /// moves faster than v_s from `x_n` to `x_start` (surface positions at qⁿ and at Newton's start,
+  /// a step h apart); its box swept between the two, grown by d̂ plus the length of its largest
+  /// move, is checked against each sleeping body's box at `x_n` grown by d̂. A body slower than
+  /// that wakes a sleeping one only by touching it (end_step). A woken body's rest time starts
+  /// again from 0. Returns the bodies woken.
+  std::vector<int> wake_near_moves(const Eigen::MatrixX3d& x_n, const Eigen::MatrixX3d& x_start, double dhat,
+                                   double h);
+
+  /// At a step's end: each awake dynamic affine body's rest time grows by h when it touches
+  /// something (an active contact of `contacts`) and no surface point moves faster than v_s
+  /// (`surface_velocity`, |V|×3), else it restarts from 0; soft bodies never rest. Then the
+  /// islands (dynamic bodies joined by the contacts between them, and each sleeping island kept
+  /// whole) sleep where every body's rest time has reached t_s, and every other island wakes.
+  /// Returns the bodies that fell asleep in this call.
+  std::vector<int> end_step(const std::vector<ContactConstraint>& contacts,
+                            const Eigen::MatrixX3d& surface_velocity, double h);
+
+ private:
+  const Model& m_model;
+  double m_time, m_speed;
+  State m_state;
+};
+
+}  // namespace stiffsoft
