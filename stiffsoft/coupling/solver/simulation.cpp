@@ -117,7 +117,14 @@ StepStats Simulation::step() {
   // Lag friction and balance κ at the start-of-step configuration.
   const Eigen::MatrixX3d x_n = m_model.surface(m_q);
   const Configuration c_n{m_q, x_n};
+  if (m_sleeping) m_barrier.hold_still(m_sleeping->still_bodies());
   m_barrier.update(c_n);
+  Eigen::VectorXd q_new = initial_guess(q_tilde, c_n);
+  if (m_sleeping && !m_sleeping->wake_near_moves(x_n, m_model.surface(q_new), m_settings.dhat, h).empty()) {
+    m_inertia.set_target(still_target());
+    m_barrier.hold_still(m_sleeping->still_bodies());  // the woken bodies' contacts back
+    m_barrier.update(c_n);
+  }
   // Only the terms the scene needs: no orthogonality without affine bodies, no elasticity
   // without soft ones, no friction with μ = 0.
   std::vector<EnergyTerm*> terms{&m_inertia};
@@ -150,12 +157,7 @@ StepStats Simulation::step() {
   ns.entering_springs = m_settings.entering_springs;
   ns.forcing.eta_max = m_settings.krylov_rtol_max;
   ns.observer = m_newton_observer;
-  Eigen::VectorXd q_new = initial_guess(q_tilde, c_n);
-  if (m_sleeping) {
-    if (!m_sleeping->wake_near_moves(x_n, m_model.surface(q_new), m_settings.dhat, h).empty())
-      m_inertia.set_target(still_target());
-    ns.held_blocks = m_sleeping->held_blocks();
-  }
+  if (m_sleeping) ns.held_blocks = m_sleeping->held_blocks();
   const auto minimize = [&] {
     return m_prescribed_blocks.empty()
                ? newton_minimize(m_model, terms, q_new, *m_solver, ns, m_times, reduced_basis(), &m_hessian)

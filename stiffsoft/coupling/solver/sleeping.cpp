@@ -82,6 +82,12 @@ bool Sleeping::all_asleep() const {
   return true;
 }
 
+std::vector<char> Sleeping::still_bodies() const {
+  std::vector<char> still(m_model.bodies.size(), 0);
+  for (int b = 0; b < int(still.size()); ++b) still[b] = asleep(b) || !carries_dofs(m_model.bodies[b]);
+  return still;
+}
+
 std::vector<int> Sleeping::held_blocks() const {
   std::vector<int> blocks;
   for (int b = 0; b < int(m_model.bodies.size()); ++b)

@@ -43,6 +43,9 @@ class Sleeping {
   /// Whether every dynamic affine body sleeps and no DOF is left to move (no soft node, no
   /// kinematic body): a step has nothing to solve.
   bool all_asleep() const;
+  /// Per body, 1 for the bodies that cannot move this step: sleeping and fixed affine bodies
+  /// (BarrierTerm::hold_still leaves the contacts among them out).
+  std::vector<char> still_bodies() const;
   /// The DOF blocks of the sleeping bodies, in body order.
   std::vector<int> held_blocks() const;
 

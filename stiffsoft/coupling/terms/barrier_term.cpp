@@ -99,9 +99,24 @@ void BarrierTerm::update(const Configuration& c) {
     const Candidates candidates = m_broad_phase.find(m_model, c.x, c.x, 0.5 * m_settings.dhat);
     m_constraints = build_constraints(m_model, c.x, candidates, m_settings.dhat);
   }
+  if (!m_still_body.empty()) {
+    const std::vector<int>& body = m_model.mesh.vertex_body;
+    std::erase_if(m_constraints, [&](const ContactConstraint& k) {
+      return std::all_of(k.vertices.begin(), k.vertices.end(), [&](int v) { return v < 0 || m_still_body[body[v]]; });
+    });
+  }
   m_constraints_at = c.x;
   m_build = ++m_builds;
   if (available_threads() > 1) m_block_rank = blocks_along_widest_axis(m_model, c.q);  // one thread: no parts
+}
+
+void BarrierTerm::hold_still(const std::vector<char>& still) {
+  const bool any = std::find(still.begin(), still.end(), 1) != still.end();
+  std::vector<char> marks = any ? still : std::vector<char>{};
+  if (marks == m_still_body) return;
+  m_still_body = std::move(marks);
+  m_constraints_at.resize(0, 3);  // no build is at any surface now
+  for (Eigen::MatrixX3d& at : m_previous_at) at.resize(0, 3);
 }
 
 void BarrierTerm::sweep(const Configuration& c, const Eigen::MatrixX3d& x1) const {

@@ -94,6 +94,11 @@ class BarrierTerm final : public EnergyTerm {
   double relative_gap_change(const Configuration& c, const Eigen::MatrixX3d& dx) const override;
   /// Whether initialize_stiffness has balanced κ already (it does so once per run).
   bool kappa_balanced() const { return m_balanced; }
+  /// From the next build on, leaves out of the active contacts every stencil all of whose
+  /// vertices are on bodies marked in `still` (one entry per body: sleeping and fixed bodies,
+  /// Sleeping::still_bodies), whose distances cannot change while they stay still; forgets the
+  /// kept builds when the marks change. Empty: none left out.
+  void hold_still(const std::vector<char>& still);
   /// Continues a run from a saved κ and balance flag (Simulation::restore).
   void restore_stiffness(double kappa, bool balanced) {
     m_kappa = kappa;
@@ -162,6 +167,7 @@ class BarrierTerm final : public EnergyTerm {
   std::uint64_t m_build = 0;   ///< the number of m_constraints' build (0: none yet)
   std::array<std::uint64_t, kKeptBuilds> m_previous_build{};  ///< that of m_previous
   std::vector<int> m_vertex_block;  ///< vertex_block of each surface vertex
+  std::vector<char> m_still_body;   ///< hold_still's marks (empty: none)
   /// The DOF blocks' order in space at the last new build on two or more threads, for the
   /// owners' parts (blocks_along_widest_axis): it shapes only who computes what.
   std::vector<int> m_block_rank;
