@@ -1,27 +1,28 @@
+#include <stiffsoft/coupling/solver/sleeping.hpp>
+
 #include <algorithm>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
-#include <stiffsoft/coupling/model/model.hpp>
-#include <stiffsoft/coupling/solver/sleeping.hpp>
 #include <string>
+
+#include <stiffsoft/coupling/contact/broad_phase.hpp>
+#include <stiffsoft/coupling/model/model.hpp>
 
 namespace stiffsoft {
 
 namespace {
 
-/// An axis-aligned box of surface points (m).
-struct Box {
-  Eigen::Array3d lo = Eigen::Array3d::Constant(std::numeric_limits<double>::infinity());
-  Eigen::Array3d hi = -lo;
-  void extend(const Eigen::Array3d& p) { lo = lo.min(p), hi = hi.max(p); }
-  void grow(double r) { lo -= r, hi += r; }
-  bool overlaps(const Box& o) const { return (lo <= o.hi).all() && (o.lo <= hi).all(); }
-};
-
-/// Body b's box over the rows of x.
-Box body_box(const BodyModel& body, const Eigen::MatrixX3d& x) {
-  Box box;
-  for (int v = body.vertex_begin; v < body.vertex_end; ++v) box.extend(x.row(v).transpose().array());
+/// Body b's box over the rows of x, grown by r on every side.
+AxisBox body_box(const BodyModel& body, const Eigen::MatrixX3d& x, double r) {
+  AxisBox box(Eigen::Array3d::Constant(std::numeric_limits<double>::infinity()),
+              Eigen::Array3d::Constant(-std::numeric_limits<double>::infinity()));
+  for (int v = body.vertex_begin; v < body.vertex_end; ++v) {
+    box.lo = box.lo.min(x.row(v).transpose().array());
+    box.hi = box.hi.max(x.row(v).transpose().array());
+  }
+  box.lo -= r;
+  box.hi += r;
   return box;
 }
 
@@ -98,7 +99,7 @@ std::vector<int> Sleeping::held_blocks() const {
 std::vector<int> Sleeping::wake_near_moves(const Eigen::MatrixX3d& x_n, const Eigen::MatrixX3d& x_start,
                                            double dhat, double h) {
   std::vector<int> sleeping;
-  std::vector<Box> swept;  // of the moving bodies
+  std::vector<AxisBox> swept;  // of the moving bodies
   for (int b = 0; b < int(m_model.bodies.size()); ++b) {
     const BodyModel& body = m_model.bodies[b];
     if (asleep(b)) {
@@ -106,22 +107,18 @@ std::vector<int> Sleeping::wake_near_moves(const Eigen::MatrixX3d& x_n, const Ei
       continue;
     }
     if (!carries_dofs(body)) continue;
-    Box box = body_box(body, x_n);
     double move = 0;
-    for (int v = body.vertex_begin; v < body.vertex_end; ++v) {
-      box.extend(x_start.row(v).transpose().array());
+    for (int v = body.vertex_begin; v < body.vertex_end; ++v)
       move = std::max(move, (x_start.row(v) - x_n.row(v)).norm());
-    }
     if (move <= m_speed * h) continue;  // at rest as far as sleeping goes: it wakes others by touching them
-    box.grow(dhat + move);
-    swept.push_back(box);
+    const AxisBox from = body_box(body, x_n, dhat + move), to = body_box(body, x_start, dhat + move);
+    swept.emplace_back(from.lo.min(to.lo), from.hi.max(to.hi));
   }
   if (sleeping.empty() || swept.empty()) return {};
   std::vector<double> woken_islands;
   for (int b : sleeping) {
-    Box box = body_box(m_model.bodies[b], x_n);
-    box.grow(dhat);
-    if (std::any_of(swept.begin(), swept.end(), [&](const Box& s) { return s.overlaps(box); }))
+    const AxisBox box = body_box(m_model.bodies[b], x_n, dhat);
+    if (std::any_of(swept.begin(), swept.end(), [&](const AxisBox& s) { return s.overlaps(box); }))
       woken_islands.push_back(m_state.island[b]);
   }
   std::vector<int> woken;
@@ -157,7 +154,10 @@ std::vector<int> Sleeping::end_step(const std::vector<ContactConstraint>& contac
   for (int b = 0; b < nb; ++b) {
     if (!asleep(b)) continue;
     int& first = first_of_island[std::size_t(m_state.island[b])];
-    first < 0 ? void(first = b) : sets.join(first, b);
+    if (first < 0)
+      first = b;
+    else
+      sets.join(first, b);
   }
   for (int b = 0; b < nb; ++b) {
     const BodyModel& body = m_model.bodies[b];

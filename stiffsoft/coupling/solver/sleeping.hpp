@@ -10,8 +10,9 @@
 /// predicted to meets it held for that step.
 
 #include <Eigen/Core>
-#include <stiffsoft/coupling/contact/constraint_set.hpp>
 #include <vector>
+
+#include <stiffsoft/coupling/contact/constraint_set.hpp>
 
 namespace stiffsoft {
 
@@ -22,18 +23,18 @@ class Sleeping {
  public:
   /// What a Simulation carries from step to step (and a checkpoint keeps), per body of the model.
   struct State {
-    Eigen::VectorXd
-        rest_time;  ///< seconds the body has been touching and slower than v_s (kept while it sleeps)
-    Eigen::VectorXd island;  ///< the sleeping island's label (its smallest body index), −1 awake
+    Eigen::VectorXd rest_time;  ///< seconds it has rested (touching, below v_s); kept while it sleeps
+    Eigen::VectorXd island;     ///< its sleeping island's label (the smallest body index in it), −1 awake
   };
 
   /// Nobody asleep. `time` t_s (s) > 0, `speed` v_s (m/s) > 0.
   Sleeping(const Model& model, double time, double speed);
 
-  /// The state now (a copy).
+  /// The state now.
   const State& state() const { return m_state; }
   /// Continues from `s`; empty vectors (a state saved without sleeping) wake every body and
-  /// restart its rest time; std::invalid_argument when they have neither none nor one entry per body.
+  /// restart their rest times; std::invalid_argument when they have neither no entry nor one per
+  /// body.
   void restore(const State& s);
 
   /// Whether body b sleeps.
