@@ -263,7 +263,7 @@ void bind_simulation(py::module_& m) {
           [](const SimulationState& s) {
             return py::make_tuple(s.time, s.step, s.q, s.qdot, s.q_prev, s.qdot_prev, s.kappa,
                                   s.kappa_balanced, s.solver.decided_nonzeros, s.solver.krylov,
-                                  s.sleeping.rest_time, s.sleeping.island);
+                                  s.sleeping.rest_time, s.sleeping.asleep);
           },
           [](const py::tuple& t) {
             // 8 fields: a pickle from before the solver's choice was kept (the solver chooses anew);

@@ -116,7 +116,7 @@ void write_checkpoint(const std::filesystem::path& file, const Checkpoint& c) {
   w.put(std::int64_t(c.state.solver.decided_nonzeros));
   w.put(std::uint8_t(c.state.solver.krylov));
   w.put(c.state.sleeping.rest_time);
-  w.put(c.state.sleeping.island);
+  w.put(c.state.sleeping.asleep);
   w.put(c.next_frame);
   w.put(c.frames);
   w.put(c.joint_frames);
@@ -152,7 +152,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& file) {
   c.state.solver.decided_nonzeros = long(r.get<std::int64_t>());
   c.state.solver.krylov = r.get<std::uint8_t>() != 0;
   c.state.sleeping.rest_time = r.get_vector();
-  c.state.sleeping.island = r.get_vector();
+  c.state.sleeping.asleep = r.get_vector();
   c.next_frame = r.get<double>();
   c.frames = r.get_frame_list();
   c.joint_frames = r.get_frame_list();

@@ -106,6 +106,61 @@ StepStats Simulation::step() {
   for (int i = 0; i < nodes.size(); ++i)
     if (nodes.motion[i] == Motion::Kinematic)
       q_tilde.segment<3>(nodes.dof[i]) = (nodes.X.row(i) + (m_time + h) * nodes.velocity.row(i)).transpose();
+  const Eigen::MatrixX3d x_n = m_model.surface(m_q);
+  const Configuration c_n{m_q, x_n};
+  const double kappa_n = m_barrier.kappa();
+  const bool balanced_n = m_barrier.kappa_balanced();
+  const LinearSolverMemory memory_n = m_sleeping ? m_solver->memory() : LinearSolverMemory{};
+  StepStats stats;
+  std::vector<EnergyTerm*> terms;
+  std::vector<int> held;
+  // Solved again from the start while a moving body meets a sleeping one, which then wakes: no
+  // accepted step holds a body that a moving one came within d̂ of.
+  Eigen::VectorXd q_new = solve_step(q_tilde, c_n, stats, terms, held);
+  while (m_sleeping && !m_sleeping->wake_met_by_moves(x_n, m_model.surface(q_new), m_settings.dhat, h).empty()) {
+    m_barrier.restore_stiffness(kappa_n, balanced_n);
+    m_solver->restore_memory(memory_n);
+    q_new = solve_step(q_tilde, c_n, stats, terms, held);
+  }
+  check_rigidity(q_new);
+
+  Eigen::VectorXd qdot_new = updated_qdot(m_settings.integrator, h, q_new, m_q, m_q_prev);
+  for (int b : held) qdot_new.segment(m_model.blocks[b].offset, m_model.blocks[b].size).setZero();
+  m_q_prev = m_q;
+  m_qdot_prev = m_qdot;
+  m_q = q_new;
+  m_qdot = qdot_new;
+  m_time += h;
+  ++m_step;
+
+  const Eigen::MatrixX3d x = m_model.surface(m_q);
+  if (m_sleeping) {
+    m_barrier.update({m_q, x});
+    for (int b : m_sleeping->end_step(m_barrier.constraints(), m_model.surface_step(m_qdot), h)) {
+      const BodyModel& body = m_model.bodies[b];
+      m_qdot.segment<12>(body.dof).setZero();
+      m_qdot_prev.segment<12>(body.dof).setZero();
+      m_q_prev.segment<12>(body.dof) = m_q.segment<12>(body.dof);
+    }
+  }
+  if (m_friction) {
+    const FrictionTerm::StickSlip stick_slip = m_friction->stick_slip({m_q, x});
+    stats.sticking = stick_slip.sticking;
+    stats.sliding = stick_slip.sliding;
+    stats.stick_slip_flips = m_friction->stick_slip_flips();
+  }
+  if (!m_model.joints.empty()) {
+    for (EnergyTerm* t : terms) t->update({m_q, x});
+    compute_joint_forces(terms, {m_q, x});
+    for (const Eigen::Vector3d& f : m_joint_forces) stats.joint_force = std::max(stats.joint_force, f.norm());
+  }
+  finish_stats(stats, x, start);
+  return stats;
+}
+
+Eigen::VectorXd Simulation::solve_step(const Eigen::VectorXd& q_tilde, const Configuration& c_n, StepStats& stats,
+                                       std::vector<EnergyTerm*>& terms, std::vector<int>& held) {
+  const double h = m_settings.h;
   // A sleeping body's target is where it is (held there, it has no other).
   const auto still_target = [&] {
     Eigen::VectorXd target = q_tilde;
@@ -115,19 +170,17 @@ StepStats Simulation::step() {
   m_inertia.set_target(still_target());
 
   // Lag friction and balance κ at the start-of-step configuration.
-  const Eigen::MatrixX3d x_n = m_model.surface(m_q);
-  const Configuration c_n{m_q, x_n};
   if (m_sleeping) m_barrier.hold_still(m_sleeping->still_bodies());
   m_barrier.update(c_n);
   Eigen::VectorXd q_new = initial_guess(q_tilde, c_n);
-  if (m_sleeping && !m_sleeping->wake_near_moves(x_n, m_model.surface(q_new), m_settings.dhat, h).empty()) {
+  if (m_sleeping && !m_sleeping->wake_near_moves(c_n.x, m_model.surface(q_new), m_settings.dhat, h).empty()) {
     m_inertia.set_target(still_target());
     m_barrier.hold_still(m_sleeping->still_bodies());  // the woken bodies' contacts back
     m_barrier.update(c_n);
   }
   // Only the terms the scene needs: no orthogonality without affine bodies, no elasticity
   // without soft ones, no friction with μ = 0.
-  std::vector<EnergyTerm*> terms{&m_inertia};
+  terms = {&m_inertia};
   if (!m_orthogonality.empty()) terms.push_back(&m_orthogonality);
   if (!m_elasticity.empty()) terms.push_back(&m_elasticity);
   Eigen::VectorXd grad_other = Eigen::VectorXd::Zero(m_q.size());
@@ -163,8 +216,7 @@ StepStats Simulation::step() {
                ? newton_minimize(m_model, terms, q_new, *m_solver, ns, m_times, reduced_basis(), &m_hessian)
                : follow_paths(terms, q_tilde, ns, q_new);
   };
-  StepStats stats;
-  stats.newton = minimize();
+  accumulate(stats.newton, minimize());
   // Friction lagged at qⁿ misses a contact that starts within the step (a landing slides on
   // without friction for a step): lag again at the result while that changes some body's
   // velocity by more than friction_resolution ε_v, up to contact.friction_iterations lags in all.
@@ -181,40 +233,8 @@ StepStats Simulation::step() {
   }
   if (m_basis) q_new = m_basis->project(q_new);  // removes round-off drift along the equalities
   copy_blocks(ns.held_blocks, m_q, q_new);      // exactly where they were, whatever the line search's round-off
-  check_rigidity(q_new);
-
-  Eigen::VectorXd qdot_new = updated_qdot(m_settings.integrator, h, q_new, m_q, m_q_prev);
-  for (int b : ns.held_blocks) qdot_new.segment(m_model.blocks[b].offset, m_model.blocks[b].size).setZero();
-  m_q_prev = m_q;
-  m_qdot_prev = m_qdot;
-  m_q = q_new;
-  m_qdot = qdot_new;
-  m_time += h;
-  ++m_step;
-
-  const Eigen::MatrixX3d x = m_model.surface(m_q);
-  if (m_sleeping) {
-    m_barrier.update({m_q, x});
-    for (int b : m_sleeping->end_step(m_barrier.constraints(), m_model.surface_step(m_qdot), h)) {
-      const BodyModel& body = m_model.bodies[b];
-      m_qdot.segment<12>(body.dof).setZero();
-      m_qdot_prev.segment<12>(body.dof).setZero();
-      m_q_prev.segment<12>(body.dof) = m_q.segment<12>(body.dof);
-    }
-  }
-  if (m_friction) {
-    const FrictionTerm::StickSlip stick_slip = m_friction->stick_slip({m_q, x});
-    stats.sticking = stick_slip.sticking;
-    stats.sliding = stick_slip.sliding;
-    stats.stick_slip_flips = m_friction->stick_slip_flips();
-  }
-  if (!m_model.joints.empty()) {
-    for (EnergyTerm* t : terms) t->update({m_q, x});
-    compute_joint_forces(terms, {m_q, x});
-    for (const Eigen::Vector3d& f : m_joint_forces) stats.joint_force = std::max(stats.joint_force, f.norm());
-  }
-  finish_stats(stats, x, start);
-  return stats;
+  held = ns.held_blocks;
+  return q_new;
 }
 
 StepStats Simulation::sleeping_step() {
@@ -227,7 +247,8 @@ StepStats Simulation::sleeping_step() {
   StepStats stats;
   stats.newton.converged = true;
   const Eigen::MatrixX3d x = m_model.surface(m_q);
-  m_barrier.update({m_q, x});  // the contacts stats reports (already built but after a restore)
+  m_barrier.hold_still(m_sleeping->still_bodies());  // the same after a restore
+  m_barrier.update({m_q, x});                         // the contacts stats reports (already built but after a restore)
   finish_stats(stats, x, start);
   return stats;
 }

@@ -38,7 +38,7 @@ struct SimulationState {
   double kappa = 0;                         ///< the barrier's adaptive stiffness κ
   bool kappa_balanced = false;              ///< whether κ was balanced at first contact already
   LinearSolverMemory solver;                ///< the linear solver's choices so far ("auto"'s backend)
-  Sleeping::State sleeping;                 ///< rest times and sleeping islands (empty vectors when nothing may sleep)
+  Sleeping::State sleeping;                 ///< rest times and sleeping bodies (empty vectors when nothing may sleep)
 };
 
 /// A model advanced in time.
@@ -120,6 +120,13 @@ class Simulation {
   /// current configuration (update() done). The friction term keeps the stencils it makes at c
   /// for the next lag there (the next step's).
   double friction_lag_error(const Configuration& c);
+  /// One solve of the step from qⁿ (`c_n`) towards q̃: κ balanced, friction and damping lagged at
+  /// c_n, Newton from initial_guess() with the sleeping bodies held (after waking those a
+  /// predicted move reaches), friction lagged again at the result as the settings ask. Adds its
+  /// counts to `stats`; `terms` and `held` get the energy terms and held DOF blocks it used.
+  /// Returns q^{n+1}.
+  Eigen::VectorXd solve_step(const Eigen::VectorXd& q_tilde, const Configuration& c_n, StepStats& stats,
+                             std::vector<EnergyTerm*>& terms, std::vector<int>& held);
   /// Newton's starting point: every dynamic body moved rigidly (p from q̃, A turned by
   /// exp([ω]× h)), kinematic bodies onto their target (q̃), as far along the straight line from
   /// qⁿ as CCD allows; bodies in contact at qⁿ start without q̃'s free fall β h² g (they rest

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <limits>
-#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -36,23 +35,6 @@ bool may_sleep(const BodyModel& body) {
   return body.representation == Representation::Affine && body.motion == Motion::Dynamic && body.dof >= 0;
 }
 
-/// Union–find over bodies.
-class BodySets {
- public:
-  explicit BodySets(int n) : m_parent(std::size_t(n)) { std::iota(m_parent.begin(), m_parent.end(), 0); }
-  int root(int b) {
-    while (m_parent[b] != b) b = m_parent[b] = m_parent[m_parent[b]];
-    return b;
-  }
-  void join(int a, int b) {
-    a = root(a), b = root(b);
-    if (a != b) m_parent[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<int> m_parent;
-};
-
 }  // namespace
 
 Sleeping::Sleeping(const Model& model, double time, double speed)
@@ -62,18 +44,18 @@ Sleeping::Sleeping(const Model& model, double time, double speed)
 
 void Sleeping::restore(const State& s) {
   const auto n = Eigen::Index(m_model.bodies.size());
-  if (s.rest_time.size() == 0 && s.island.size() == 0) {
+  if (s.rest_time.size() == 0 && s.asleep.size() == 0) {
     m_state = {Eigen::VectorXd::Zero(n), Eigen::VectorXd::Constant(n, -1)};
     return;
   }
-  if (s.rest_time.size() != n || s.island.size() != n)
+  if (s.rest_time.size() != n || s.asleep.size() != n)
     throw std::invalid_argument("Sleeping::restore: the state has " + std::to_string(s.rest_time.size()) +
-                                " bodies' rest times and " + std::to_string(s.island.size()) +
-                                " islands, this model " + std::to_string(n) + " bodies");
+                                " bodies' rest times and " + std::to_string(s.asleep.size()) +
+                                " sleeping flags, this model " + std::to_string(n) + " bodies");
   m_state = s;
 }
 
-int Sleeping::sleeping_count() const { return int((m_state.island.array() >= 0).count()); }
+int Sleeping::sleeping_count() const { return int((m_state.asleep.array() >= 0).count()); }
 
 bool Sleeping::all_asleep() const {
   for (int b = 0; b < int(m_model.bodies.size()); ++b) {
@@ -98,6 +80,16 @@ std::vector<int> Sleeping::held_blocks() const {
 
 std::vector<int> Sleeping::wake_near_moves(const Eigen::MatrixX3d& x_n, const Eigen::MatrixX3d& x_start,
                                            double dhat, double h) {
+  return wake_reached(x_n, x_start, dhat, h, true);
+}
+
+std::vector<int> Sleeping::wake_met_by_moves(const Eigen::MatrixX3d& x_n, const Eigen::MatrixX3d& x_new,
+                                             double dhat, double h) {
+  return wake_reached(x_n, x_new, dhat, h, false);
+}
+
+std::vector<int> Sleeping::wake_reached(const Eigen::MatrixX3d& x_n, const Eigen::MatrixX3d& x_to,
+                                        double dhat, double h, bool grow_by_move) {
   std::vector<int> sleeping;
   std::vector<AxisBox> swept;  // of the moving bodies
   for (int b = 0; b < int(m_model.bodies.size()); ++b) {
@@ -109,25 +101,21 @@ std::vector<int> Sleeping::wake_near_moves(const Eigen::MatrixX3d& x_n, const Ei
     if (!carries_dofs(body)) continue;
     double move = 0;
     for (int v = body.vertex_begin; v < body.vertex_end; ++v)
-      move = std::max(move, (x_start.row(v) - x_n.row(v)).norm());
-    if (move <= m_speed * h) continue;  // at rest as far as sleeping goes: it wakes others by touching them
-    const AxisBox from = body_box(body, x_n, dhat + move), to = body_box(body, x_start, dhat + move);
+      move = std::max(move, (x_to.row(v) - x_n.row(v)).norm());
+    if (move <= m_speed * h) continue;  // at rest as far as sleeping goes
+    const double grow = grow_by_move ? dhat + move : dhat;
+    const AxisBox from = body_box(body, x_n, grow), to = body_box(body, x_to, grow);
     swept.emplace_back(from.lo.min(to.lo), from.hi.max(to.hi));
   }
-  if (sleeping.empty() || swept.empty()) return {};
-  std::vector<double> woken_islands;
+  std::vector<int> woken;
+  if (swept.empty()) return woken;
   for (int b : sleeping) {
     const AxisBox box = body_box(m_model.bodies[b], x_n, dhat);
-    if (std::any_of(swept.begin(), swept.end(), [&](const AxisBox& s) { return s.overlaps(box); }))
-      woken_islands.push_back(m_state.island[b]);
+    if (std::none_of(swept.begin(), swept.end(), [&](const AxisBox& s) { return s.overlaps(box); })) continue;
+    m_state.asleep[b] = -1;
+    m_state.rest_time[b] = 0;  // it rests t_s again before it sleeps again
+    woken.push_back(b);
   }
-  std::vector<int> woken;
-  for (int b : sleeping)
-    if (std::find(woken_islands.begin(), woken_islands.end(), m_state.island[b]) != woken_islands.end()) {
-      m_state.island[b] = -1;
-      m_state.rest_time[b] = 0;  // it rests t_s again before it sleeps again
-      woken.push_back(b);
-    }
   return woken;
 }
 
@@ -136,29 +124,9 @@ std::vector<int> Sleeping::end_step(const std::vector<ContactConstraint>& contac
   const int nb = int(m_model.bodies.size());
   const std::vector<int>& vertex_body = m_model.mesh.vertex_body;
   std::vector<char> touching(std::size_t(nb), 0);
-  BodySets sets(nb);
-  for (const ContactConstraint& k : contacts) {
-    int first = -1;
-    for (int v : k.vertices) {
-      if (v < 0) continue;
-      const int b = vertex_body[v];
-      touching[b] = 1;
-      if (m_model.bodies[b].motion != Motion::Dynamic) continue;  // fixed and kinematic bodies join no island
-      if (first < 0)
-        first = b;
-      else
-        sets.join(first, b);
-    }
-  }
-  std::vector<int> first_of_island(std::size_t(nb), -1);  // a sleeping island's stays whole
-  for (int b = 0; b < nb; ++b) {
-    if (!asleep(b)) continue;
-    int& first = first_of_island[std::size_t(m_state.island[b])];
-    if (first < 0)
-      first = b;
-    else
-      sets.join(first, b);
-  }
+  for (const ContactConstraint& k : contacts)
+    for (int v : k.vertices)
+      if (v >= 0) touching[vertex_body[v]] = 1;
   for (int b = 0; b < nb; ++b) {
     const BodyModel& body = m_model.bodies[b];
     if (asleep(b) || !carries_dofs(body)) continue;
@@ -168,22 +136,26 @@ std::vector<int> Sleeping::end_step(const std::vector<ContactConstraint>& contac
     const bool resting = may_sleep(body) && touching[b] && speed <= m_speed;
     m_state.rest_time[b] = resting ? m_state.rest_time[b] + h : 0.0;
   }
-  // An island sleeps when all its bodies may and have rested t_s; it is labelled by its root
-  // (its smallest body index).
-  std::vector<char> sleeps(std::size_t(nb), 1);
-  for (int b = 0; b < nb; ++b) {
+  // Rested t_s, or asleep: what a body's dynamic neighbours must all be for it to sleep.
+  const auto settled = [&](int b) {
     const BodyModel& body = m_model.bodies[b];
-    if (body.motion != Motion::Dynamic) continue;
-    if (!may_sleep(body) || m_state.rest_time[b] < m_time) sleeps[std::size_t(sets.root(b))] = 0;
-  }
+    return body.motion != Motion::Dynamic || asleep(b) || (may_sleep(body) && m_state.rest_time[b] >= m_time);
+  };
+  std::vector<char> sleeps(std::size_t(nb), 0);
+  for (int b = 0; b < nb; ++b)
+    sleeps[b] = may_sleep(m_model.bodies[b]) && !asleep(b) && m_state.rest_time[b] >= m_time;
+  for (const ContactConstraint& k : contacts)
+    for (int v : k.vertices) {
+      if (v < 0 || !sleeps[vertex_body[v]]) continue;
+      for (int w : k.vertices)
+        if (w >= 0 && !settled(vertex_body[w])) sleeps[vertex_body[v]] = 0;
+    }
   std::vector<int> fell_asleep;
-  for (int b = 0; b < nb; ++b) {
-    if (!may_sleep(m_model.bodies[b])) continue;
-    const int root = sets.root(b);
-    const double label = sleeps[std::size_t(root)] ? double(root) : -1.0;
-    if (label >= 0 && !asleep(b)) fell_asleep.push_back(b);
-    m_state.island[b] = label;
-  }
+  for (int b = 0; b < nb; ++b)
+    if (sleeps[b]) {
+      m_state.asleep[b] = 1;
+      fell_asleep.push_back(b);
+    }
   return fell_asleep;
 }
 
