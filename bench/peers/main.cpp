@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
   app.add_option("--mujoco-nconmax", options.engines.mujoco_nconmax, "MuJoCo contact buffer (0: automatic)");
   app.add_option("--mujoco-njmax", options.engines.mujoco_njmax, "MuJoCo constraint rows (0: automatic)");
   app.add_option("--sleep-time", options.engines.sleep_time,
-                 "stiffsoft-sleep: seconds at rest before an island of bodies sleeps (solver.sleep_time)");
+                 "stiffsoft-sleep: seconds at rest before a body sleeps (solver.sleep_time)");
   app.add_flag("--verify", verify, "check that each engine holds the same scene as stiffsoft, then exit");
   CLI11_PARSE(app, argc, argv);
 
