@@ -30,7 +30,8 @@ class Writer {
   }
   void put(const Eigen::VectorXd& v) {
     put(std::uint64_t(v.size()));
-    bytes.append(reinterpret_cast<const char*>(v.data()), sizeof(double) * std::size_t(v.size()));
+    if (v.size() > 0)  // an empty vector's data() is null
+      bytes.append(reinterpret_cast<const char*>(v.data()), sizeof(double) * std::size_t(v.size()));
   }
   void put(const FrameList& frames) {
     put(std::uint64_t(frames.size()));
@@ -61,7 +62,7 @@ class Reader {
     if (n > m_bytes.size() / sizeof(double)) throw_truncated();
     const char* data = take(n * sizeof(double));
     Eigen::VectorXd v{Eigen::Index(n)};
-    std::memcpy(v.data(), data, n * sizeof(double));
+    if (n > 0) std::memcpy(v.data(), data, n * sizeof(double));  // an empty vector's data() is null
     return v;
   }
   FrameList get_frame_list() {
