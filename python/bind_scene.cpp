@@ -312,7 +312,7 @@ void bind_scene(py::module_& m) {
       .def_readwrite("krylov_rtol_max", &SolverDescription::krylov_rtol_max, "largest relative residual of a Krylov solve")
       .def_readwrite("rigidity_bound", &SolverDescription::rigidity_bound, "largest |A^T A - I|_F of an affine body before the run stops")
       .def_readwrite("sleep_time", &SolverDescription::sleep_time,
-                     "seconds at rest after which an island of affine bodies sleeps (s); 0: never")
+                     "seconds at rest after which an affine body, beside bodies at rest, sleeps (s); 0: never")
       .def_readwrite("sleep_speed", &SolverDescription::sleep_speed,
                      "speed below which a body rests (m/s); None: the Newton tolerance");
   def_enum(solver, "barrier_hessian", &SolverDescription::barrier_hessian,

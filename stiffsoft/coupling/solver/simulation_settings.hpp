@@ -45,7 +45,7 @@ struct SimulationSettings {
   double rigidity_bound = 1e-2;                   ///< largest rigidity error ‖AᵀA − I‖_F an affine body may reach (PhysicsError past it)
   double contact_damping = 0;                     ///< lagged Rayleigh damping k_d of contacts (s); 0: none
   std::vector<ContactPairDamping> contact_pair_damping;  ///< k_d per body pair, replacing contact_damping there
-  double sleep_time = 0;                          ///< t_s: an island of affine bodies at rest this long sleeps (Sleeping, s); 0: none sleeps
+  double sleep_time = 0;                          ///< t_s: an affine body at rest this long, beside bodies at rest as long, sleeps (Sleeping, s); 0: none sleeps
   std::optional<double> sleep_speed;              ///< v_s: the speed below which a body rests (m/s); unset: the tolerance ε_d
 };
 

@@ -35,7 +35,7 @@ class Sleeping {
   const State& state() const { return m_state; }
   /// Continues from `s`; empty vectors (a state saved without sleeping) wake every body and
   /// restart their rest times; std::invalid_argument when they have neither no entry nor one per
-  /// body. A checkpoint of format 3 holds sleeping islands' labels (≥ 0) there: asleep.
+  /// body. Session 64 wrote sleeping islands' labels (≥ 0) there in format 3: they read as asleep.
   void restore(const State& s);
 
   /// Whether body b sleeps.
