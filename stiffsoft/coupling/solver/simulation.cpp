@@ -117,10 +117,12 @@ StepStats Simulation::step() {
   // Solved again from the start while a moving body meets a sleeping one, which then wakes: no
   // accepted step holds a body that a moving one came within d̂ of.
   Eigen::VectorXd q_new = solve_step(q_tilde, c_n, stats, terms, held);
-  while (m_sleeping && !m_sleeping->wake_met_by_moves(x_n, m_model.surface(q_new), m_settings.dhat, h).empty()) {
+  Eigen::MatrixX3d x = m_model.surface(q_new);
+  while (m_sleeping && !m_sleeping->wake_met_by_moves(x_n, x, m_settings.dhat, h).empty()) {
     m_barrier.restore_stiffness(kappa_n, balanced_n);
     m_solver->restore_memory(memory_n);
     q_new = solve_step(q_tilde, c_n, stats, terms, held);
+    x = m_model.surface(q_new);
   }
   check_rigidity(q_new);
 
@@ -133,7 +135,6 @@ StepStats Simulation::step() {
   m_time += h;
   ++m_step;
 
-  const Eigen::MatrixX3d x = m_model.surface(m_q);
   if (m_sleeping) {
     m_barrier.update({m_q, x});
     for (int b : m_sleeping->end_step(m_barrier.constraints(), m_model.surface_step(m_qdot), h)) {
