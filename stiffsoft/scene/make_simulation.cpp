@@ -70,10 +70,6 @@ PreparedScene prepare_checked(SceneDescription scene, const std::filesystem::pat
   const bool dhat_given = scene.contact.dhat.has_value();
   resolve_relative_defaults(scene, model);
   if (scene.contact.check_start_gaps) check_start_gaps(model, scene.contact.dhat.value(), dhat_given, file.string());
-  if (scene.solver.sleep_time > 0 && !scene.joints.empty())
-    throw SceneError(file.string(), "solver.sleep_time",
-                     "bodies cannot sleep in a scene with joints (it has " + std::to_string(scene.joints.size()) +
-                         "): expected 0");
   SimulationSettings settings = simulation_settings(scene, file.string());
   return {std::move(scene), std::move(model), std::move(settings)};
 }

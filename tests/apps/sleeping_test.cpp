@@ -3,7 +3,8 @@
 /// a box dropped on it wakes what it reaches before it lands, nothing sleeps in flight and no
 /// body faster than v_s comes within d̂ of a held one in a kept step; a body at rest sleeps while
 /// another still slides on what it rests on; what it changes before the first body sleeps is
-/// nothing; a state taken while it sleeps continues the same; a scene with joints is refused.
+/// nothing; a state taken while it sleeps continues the same; bodies joined by a joint sleep and
+/// wake together, and a body hanging on a joint sleeps.
 
 #include <gtest/gtest.h>
 
@@ -107,6 +108,28 @@ bool a_mover_met_a_sleeper(const Simulation& sim, const Sleeping::State& before,
   return false;
 }
 
+/// One step of `sim`, checked as every step with sleeping bodies must be: converged,
+/// intersection-free, no body faster than v_s within d̂ of a sleeping one (a_mover_met_a_sleeper),
+/// no sleeping body moved. `s` gets the step's statistics.
+::testing::AssertionResult checked_step(Simulation& sim, StepStats& s) {
+  const Sleeping::State before = sim.state().sleeping;
+  const Eigen::MatrixX3d x_n = sim.model().surface(sim.q());
+  const Eigen::VectorXd q_n = sim.q();
+  s = sim.step();
+  if (!s.newton.converged) return ::testing::AssertionFailure() << "Newton did not converge";
+  if (!(s.smallest_distance > 0)) return ::testing::AssertionFailure() << "surfaces touch or intersect";
+  const Sleeping::State after = sim.state().sleeping;
+  if (a_mover_met_a_sleeper(sim, before, after, x_n, sim.model().surface(sim.q())))
+    return ::testing::AssertionFailure()
+           << "a body faster than v_s came within d̂ of a sleeping one and the step was kept";
+  for (int b = 0; b < int(sim.model().bodies.size()); ++b) {
+    const int dof = sim.model().bodies[b].dof;
+    if (dof >= 0 && before.asleep[b] >= 0 && after.asleep[b] >= 0 && sim.q().segment<12>(dof) != q_n.segment<12>(dof))
+      return ::testing::AssertionFailure() << "sleeping body " << b << " moved";
+  }
+  return ::testing::AssertionSuccess();
+}
+
 TEST(Sleeping, ADroppedBoxWakesWhatItReachesAndNoMovingBodyEverMeetsAHeldOne) {
   Simulation sim = simulate(stack_scene(0.2, true), "drop");
   Simulation awake = simulate(stack_scene(0, true), "drop_awake");
@@ -115,21 +138,10 @@ TEST(Sleeping, ADroppedBoxWakesWhatItReachesAndNoMovingBodyEverMeetsAHeldOne) {
   int slept = -1, woke = -1, landed = -1;
   double top_speed_after = 0, awake_top_speed_after = 0;
   for (int k = 0; k < 300; ++k) {
-    const Sleeping::State before = sim.state().sleeping;
-    const Eigen::MatrixX3d x_n = sim.model().surface(sim.q());
-    const Eigen::VectorXd q_n = sim.q();
-    const StepStats s = sim.step();
+    StepStats s;
+    ASSERT_TRUE(checked_step(sim, s)) << "step " << k;
     awake.step();
-    ASSERT_TRUE(s.newton.converged) << "step " << k;
-    ASSERT_GT(s.smallest_distance, 0) << "step " << k;
     const Sleeping::State after = sim.state().sleeping;
-    ASSERT_FALSE(a_mover_met_a_sleeper(sim, before, after, x_n, sim.model().surface(sim.q())))
-        << "step " << k << ": a body faster than v_s came within d̂ of a sleeping one and the step was kept";
-    for (int b = 0; b < int(sim.model().bodies.size()); ++b) {
-      const int bdof = sim.model().bodies[b].dof;
-      if (bdof >= 0 && before.asleep[b] >= 0 && after.asleep[b] >= 0)
-        ASSERT_EQ(sim.q().segment<12>(bdof), q_n.segment<12>(bdof)) << "step " << k << ": sleeping body " << b << " moved";
-    }
     const bool dropped_in_contact = sim.q()[dof + 1] < 0.31 + 0.2 + 2 * sim.settings().dhat;
     if (landed < 0 && dropped_in_contact) landed = k;
     if (landed < 0) EXPECT_LT(after.asleep[dropped], 0) << "step " << k << ": the falling box slept";
@@ -207,18 +219,56 @@ TEST(Sleeping, AStateTakenWhileItSleepsContinuesTheSame) {
   }
 }
 
-TEST(Sleeping, ASceneWithJointsIsRefused) {
-  const std::string json =
-      R"({"description": "a pendulum", "time": {"dt": 0.01, "duration": 1}, "solver": {"sleep_time": 0.5},
-    "bodies": [{"name": "a", "mesh": {"primitive": "box", "size": [0.2, 0.2, 0.2]}, "position": [0, 1, 0]}],
-    "joints": [{"name": "pin", "kind": "ball", "body_a": "a", "anchor": [0, 1.1, 0]}]})";
-  try {
-    simulate(json, "jointed");
-    FAIL() << "a scene with joints and sleep_time was accepted";
-  } catch (const SceneError& e) {
-    EXPECT_EQ(e.json_path(), "solver.sleep_time");
-    EXPECT_NE(std::string(e.what()).find("joints"), std::string::npos) << e.what();
+/// Two 0.2-m cubes 1 cm apart joined by a ball joint between them, 5 mm above a fixed ground
+/// (h = 0.01, μ = 0.3); a third hanging still 2 m away from a ball joint to the world 0.2 m above
+/// its centre; and a cube dropped from 1.3 m above the ground onto the right one's outer half.
+std::string jointed_scene(double sleep) {
+  return R"({"description": "a jointed pair and a hanging cube", "time": {"dt": 0.01, "duration": 3},
+    "contact": {"mu": 0.3}, "solver": {"sleep_time": )" +
+         std::to_string(sleep) + R"(},
+    "bodies": [{"name": "ground", "kind": "fixed", "mesh": {"primitive": "box", "size": [5, 0.1, 1]},
+                "position": [0, -0.05, 0]},
+               {"name": "left", "mesh": {"primitive": "box", "size": [0.2, 0.2, 0.2]}, "position": [-0.105, 0.105, 0]},
+               {"name": "right", "mesh": {"primitive": "box", "size": [0.2, 0.2, 0.2]}, "position": [0.105, 0.105, 0]},
+               {"name": "lamp", "mesh": {"primitive": "box", "size": [0.2, 0.2, 0.2]}, "position": [2, 1, 0]},
+               {"name": "dropped", "mesh": {"primitive": "box", "size": [0.2, 0.2, 0.2]}, "position": [0.15, 1.4, 0]}],
+    "joints": [{"name": "pair", "kind": "ball", "body_a": "left", "body_b": "right", "anchor": [0, 0.105, 0]},
+               {"name": "hook", "kind": "ball", "body_a": "lamp", "body_b": "world", "anchor": [2, 1.2, 0]}]})";
+}
+
+TEST(Sleeping, JointedBodiesSleepAndWakeTogetherAndAHangingBodySleeps) {
+  Simulation sim = simulate(jointed_scene(0.2), "jointed");
+  Simulation awake = simulate(jointed_scene(0), "jointed_awake");
+  const int left = 1, right = 2, lamp = 3, dropped = 4;
+  int slept = -1, woke = -1, landed = -1, lamp_slept = -1, all_slept = -1;
+  for (int k = 0; k < 300; ++k) {
+    StepStats s;
+    ASSERT_TRUE(checked_step(sim, s)) << "step " << k;
+    awake.step();
+    ASSERT_LT(s.joint_error, 1e-9) << "step " << k;
+    const Sleeping::State after = sim.state().sleeping;
+    if (s.sleeping_bodies == 0 && slept < 0 && lamp_slept < 0)
+      ASSERT_EQ(awake.q(), sim.q()) << "step " << k << ": a run differs before anything sleeps";
+    ASSERT_EQ(after.asleep[left] >= 0, after.asleep[right] >= 0) << "step " << k << ": the joined pair split";
+    const int ddof = sim.model().bodies[dropped].dof;
+    if (landed < 0 && sim.q()[ddof + 1] < 0.2 + 0.1 + 2 * sim.settings().dhat) landed = k;
+    if (lamp_slept < 0 && after.asleep[lamp] >= 0) lamp_slept = k;
+    if (lamp_slept >= 0) EXPECT_GE(after.asleep[lamp], 0) << "step " << k << ": the lamp woke, nothing reaches it";
+    if (slept < 0 && after.asleep[left] >= 0) slept = k;
+    if (slept >= 0 && woke < 0 && after.asleep[left] < 0) woke = k;
+    if (s.sleeping_bodies == 4) {
+      if (all_slept < 0) all_slept = k;
+      else EXPECT_EQ(s.newton.iterations, 0) << "step " << k;
+    }
   }
+  // It rests from the first step (its joint holds it), so it sleeps at the end of the 20th.
+  ASSERT_GE(lamp_slept, 19) << "the hanging cube never slept, or before it had rested 0.2 s";
+  ASSERT_GE(slept, 0) << "the pair never slept before the box arrived";
+  ASSERT_GE(landed, 0) << "the dropped box never reached the pair";
+  ASSERT_GE(woke, 0) << "the pair never woke";
+  EXPECT_LT(slept, landed);
+  EXPECT_LE(woke, landed) << "the pair woke only after the box had landed";
+  EXPECT_GT(all_slept, landed) << "the pair and the dropped box never slept again";
 }
 
 }  // namespace

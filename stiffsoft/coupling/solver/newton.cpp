@@ -146,8 +146,6 @@ NewtonReport newton_minimize(const Model& model, const std::vector<EnergyTerm*>&
   const auto hold = [&](Eigen::VectorXd& v) {
     for (int b : settings.held_blocks) v.segment(model.blocks[b].offset, model.blocks[b].size).setZero();
   };
-  if (basis && holds)
-    throw std::invalid_argument("newton_minimize: held DOF blocks cannot be combined with joints' eliminated equalities");
   if (basis && solver.is_iterative())
     throw std::invalid_argument("newton_minimize: the " + solver.name() +
                                 " linear solver is iterative, which joints' eliminated equalities do not support; "

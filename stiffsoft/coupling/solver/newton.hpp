@@ -107,7 +107,9 @@ std::vector<double> island_multiples(const std::vector<double>& bound, double al
 /// q must satisfy the equalities on entry; each direction solves (Nᵀ H N) dz = −Nᵀ g and steps
 /// along p = N dz, so every iterate keeps them (to round-off). The line search, CCD and the
 /// stopping rule are unchanged. Krylov backends are not supported with a basis (their DOF
-/// blocks do not survive the elimination): std::invalid_argument; nor are held blocks.
+/// blocks do not survive the elimination): std::invalid_argument. Held blocks with a basis must
+/// hold every block its equalities tie to theirs (a sleeping joint group, Sleeping): the reduced
+/// system then decouples them, and their directions are zero.
 ///
 /// `hessian`, over model.blocks, keeps the Hessian's storage from call to call (a Simulation
 /// keeps one for its run), so that blocks stored before need not be made again (null: a new

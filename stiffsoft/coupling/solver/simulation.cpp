@@ -83,12 +83,8 @@ Simulation::Simulation(Model model, const SimulationSettings& settings)
     if (body.block >= 0 && body.motion == Motion::Kinematic) m_prescribed_blocks.push_back(body.block);
   for (int i = 0; i < nodes.size(); ++i)
     if (nodes.motion[i] == Motion::Kinematic) m_prescribed_blocks.push_back(nodes.block[i]);
-  if (settings.sleep_time > 0) {
-    if (!m_model.joints.empty())
-      throw std::invalid_argument("SimulationSettings.sleep_time: bodies cannot sleep in a scene with joints (it has " +
-                                  std::to_string(m_model.joints.size()) + "); set it to 0");
+  if (settings.sleep_time > 0)
     m_sleeping.emplace(m_model, settings.sleep_time, settings.sleep_speed.value_or(settings.tolerance));
-  }
 }
 
 StepStats Simulation::step() {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -38,7 +39,22 @@ bool may_sleep(const BodyModel& body) {
 }  // namespace
 
 Sleeping::Sleeping(const Model& model, double time, double speed)
-    : m_model(model), m_time(time), m_speed(speed) {
+    : m_model(model), m_time(time), m_speed(speed), m_jointed(model.bodies.size(), 0) {
+  m_group.resize(model.bodies.size());
+  std::iota(m_group.begin(), m_group.end(), 0);
+  const auto root = [&](int b) {
+    while (m_group[b] != b) b = m_group[b] = m_group[m_group[b]];
+    return b;
+  };
+  for (const JointModel& joint : model.joints) {
+    const int a = joint.a.body, b = joint.b.body;
+    for (int e : {a, b})
+      if (e >= 0) m_jointed[e] = 1;
+    if (a < 0 || b < 0 || !carries_dofs(model.bodies[a]) || !carries_dofs(model.bodies[b])) continue;
+    const int ra = root(a), rb = root(b);
+    m_group[std::max(ra, rb)] = std::min(ra, rb);
+  }
+  for (int b = 0; b < int(m_group.size()); ++b) m_group[b] = root(b);
   restore(State{});
 }
 
@@ -109,9 +125,14 @@ std::vector<int> Sleeping::wake_reached(const Eigen::MatrixX3d& x_n, const Eigen
   }
   std::vector<int> woken;
   if (swept.empty()) return woken;
+  std::vector<char> group_woken(m_model.bodies.size(), 0);
   for (int b : sleeping) {
     const AxisBox box = body_box(m_model.bodies[b], x_n, dhat);
-    if (std::none_of(swept.begin(), swept.end(), [&](const AxisBox& s) { return s.overlaps(box); })) continue;
+    if (std::any_of(swept.begin(), swept.end(), [&](const AxisBox& s) { return s.overlaps(box); }))
+      group_woken[m_group[b]] = 1;
+  }
+  for (int b : sleeping) {
+    if (!group_woken[m_group[b]]) continue;
     m_state.asleep[b] = -1;
     m_state.rest_time[b] = 0;  // it rests t_s again before it sleeps again
     woken.push_back(b);
@@ -127,6 +148,7 @@ std::vector<int> Sleeping::end_step(const std::vector<ContactConstraint>& contac
   for (const ContactConstraint& k : contacts)
     for (int v : k.vertices)
       if (v >= 0) touching[vertex_body[v]] = 1;
+  for (int b = 0; b < nb; ++b) touching[b] |= m_jointed[b];
   for (int b = 0; b < nb; ++b) {
     const BodyModel& body = m_model.bodies[b];
     if (asleep(b) || !carries_dofs(body)) continue;
@@ -150,9 +172,14 @@ std::vector<int> Sleeping::end_step(const std::vector<ContactConstraint>& contac
       for (int w : k.vertices)
         if (w >= 0 && !settled(vertex_body[w])) sleeps[vertex_body[v]] = 0;
     }
+  // A joint group sleeps whole or not at all (so a body sleeps only beside joined bodies that
+  // have rested t_s too).
+  std::vector<char> group_awake(std::size_t(nb), 0);
+  for (int b = 0; b < nb; ++b)
+    if (!sleeps[b] && !asleep(b)) group_awake[m_group[b]] = 1;
   std::vector<int> fell_asleep;
   for (int b = 0; b < nb; ++b)
-    if (sleeps[b]) {
+    if (sleeps[b] && !group_awake[m_group[b]]) {
       m_state.asleep[b] = 1;
       fell_asleep.push_back(b);
     }

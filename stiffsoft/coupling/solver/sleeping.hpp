@@ -6,7 +6,8 @@
 /// body moving faster than v_s comes within d̂ of it: predicted at a step's start, it wakes before
 /// Newton runs; found at the step's end, it wakes and the step is solved again (Simulation), so no
 /// accepted step has a moving body meet a held one. A woken body rests t_s again before it sleeps
-/// again. A step in which every dynamic body sleeps does no Newton iteration. What it trades
+/// again. Bodies joined by joints sleep and wake together, and a joint counts as touching. A step
+/// in which every dynamic body sleeps does no Newton iteration. What it trades
 /// (docs/sleeping.md): a sleeping body no longer creeps (friction's slip below ε_v, a pile settling
 /// slower than v_s), nor moves under a body slower than v_s.
 
@@ -68,23 +69,31 @@ class Sleeping {
                                      double h);
 
   /// At a step's end: each awake dynamic affine body's rest time grows by h when it touches
-  /// something (an active contact of `contacts`) and no surface point moves faster than v_s
-  /// (`surface_velocity`, |V|×3), else it restarts from 0; soft bodies never rest. Then every
-  /// body whose rest time has reached t_s sleeps if each dynamic body it touches sleeps or has
-  /// rested t_s too (so that a body still moving keeps its neighbours awake, and sleeping bodies
-  /// meet moving ones only across an awake one). Returns the bodies that fell asleep in this call.
+  /// something (an active contact of `contacts`, or a joint) and no surface point moves faster
+  /// than v_s (`surface_velocity`, |V|×3), else it restarts from 0; soft bodies never rest. Then
+  /// every body whose rest time has reached t_s sleeps if each dynamic body it touches (by a
+  /// contact or a joint) sleeps or has rested t_s too (so that a body still moving keeps its
+  /// neighbours awake, and sleeping bodies meet moving ones only across an awake one), and so can
+  /// every body of its joint group. Returns the bodies that fell asleep in this call.
   std::vector<int> end_step(const std::vector<ContactConstraint>& contacts,
                             const Eigen::MatrixX3d& surface_velocity, double h);
 
  private:
   /// Wakes the sleeping bodies that the boxes of the moves from `x_n` to `x_to` faster than v_s,
-  /// grown by d̂ (and, with `grow_by_move`, by the move's length), meet; see wake_near_moves.
+  /// grown by d̂ (and, with `grow_by_move`, by the move's length), meet, with their joint
+  /// groups; see wake_near_moves.
   std::vector<int> wake_reached(const Eigen::MatrixX3d& x_n, const Eigen::MatrixX3d& x_to, double dhat,
                                 double h, bool grow_by_move);
 
   const Model& m_model;
   double m_time, m_speed;
   State m_state;
+  /// Per body, its joint group: the lowest index of the bodies carrying DOFs that joints join it
+  /// to, directly or along a chain (itself when none). A joint's eliminated equalities tie its
+  /// bodies' DOFs, so a group is held, or moves, whole.
+  std::vector<int> m_group;
+  /// Per body, whether some joint ends on it (to another body, a fixed one or the world).
+  std::vector<char> m_jointed;
 };
 
 }  // namespace stiffsoft
