@@ -170,11 +170,6 @@ void grid_pairs(const std::vector<Keyed>& A, const std::vector<Box>& boxes_a, co
     }
 }
 
-/// True when the body carries DOFs (an affine body that is not fixed, or a soft body).
-bool moves(const BodyModel& body) {
-  return body.dof >= 0 || body.representation == Representation::Soft;
-}
-
 /// Each body's box: the union of its vertices' boxes.
 std::vector<Box> body_boxes(const Model& model, const std::vector<Box>& vertex) {
   const int nb = int(model.bodies.size());
@@ -204,7 +199,7 @@ std::vector<std::array<int, 2>> body_pairs(const Model& model, const std::vector
   for (int i = 0; i < nb; ++i) {
     const Box& box = body_box[order[i]];
     for (int k = 0; k < 3; ++k) bound[2 * k][i] = box.lo[k], bound[2 * k + 1][i] = box.hi[k];
-    moving[i] = moves(model.bodies[order[i]]);
+    moving[i] = model.bodies[order[i]].carries_dofs();
   }
   // Most bodies the sweep meets do not overlap in y or z, unpredictably: each is written and
   // kept only when it does, without a branch on it. The sweep runs in chunks of bodies in

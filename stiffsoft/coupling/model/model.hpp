@@ -72,6 +72,8 @@ struct BodyModel {
   int edge_begin = 0, edge_end = 0;        ///< its edges
   /// True when the body's own surface can touch itself (soft bodies self-collide).
   bool self_contact() const { return representation == Representation::Soft; }
+  /// True when the body carries DOFs (a dynamic or kinematic affine body, a soft body): it may move.
+  bool carries_dofs() const { return dof >= 0 || representation == Representation::Soft; }
 };
 
 /// The nodes and tetrahedra of all soft bodies, concatenated.

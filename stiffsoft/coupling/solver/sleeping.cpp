@@ -26,11 +26,6 @@ AxisBox body_box(const BodyModel& body, const Eigen::MatrixX3d& x, double r) {
   return box;
 }
 
-/// Whether body b carries DOFs (a dynamic or kinematic affine body, a soft body).
-bool carries_dofs(const BodyModel& body) {
-  return body.dof >= 0 || body.representation == Representation::Soft;
-}
-
 /// Whether body b may sleep: a dynamic affine body.
 bool may_sleep(const BodyModel& body) {
   return body.representation == Representation::Affine && body.motion == Motion::Dynamic && body.dof >= 0;
@@ -50,7 +45,7 @@ Sleeping::Sleeping(const Model& model, double time, double speed)
     const int a = joint.a.body, b = joint.b.body;
     for (int e : {a, b})
       if (e >= 0) m_jointed[e] = 1;
-    if (a < 0 || b < 0 || !carries_dofs(model.bodies[a]) || !carries_dofs(model.bodies[b])) continue;
+    if (a < 0 || b < 0 || !model.bodies[a].carries_dofs() || !model.bodies[b].carries_dofs()) continue;
     const int ra = root(a), rb = root(b);
     m_group[std::max(ra, rb)] = std::min(ra, rb);
   }
@@ -76,14 +71,14 @@ int Sleeping::sleeping_count() const { return int((m_state.asleep.array() >= 0).
 bool Sleeping::all_asleep() const {
   for (int b = 0; b < int(m_model.bodies.size()); ++b) {
     const BodyModel& body = m_model.bodies[b];
-    if (carries_dofs(body) && !(may_sleep(body) && asleep(b))) return false;
+    if (body.carries_dofs() && !(may_sleep(body) && asleep(b))) return false;
   }
   return true;
 }
 
 std::vector<char> Sleeping::still_bodies() const {
   std::vector<char> still(m_model.bodies.size(), 0);
-  for (int b = 0; b < int(still.size()); ++b) still[b] = asleep(b) || !carries_dofs(m_model.bodies[b]);
+  for (int b = 0; b < int(still.size()); ++b) still[b] = asleep(b) || !m_model.bodies[b].carries_dofs();
   return still;
 }
 
@@ -114,7 +109,7 @@ std::vector<int> Sleeping::wake_reached(const Eigen::MatrixX3d& x_n, const Eigen
       sleeping.push_back(b);
       continue;
     }
-    if (!carries_dofs(body)) continue;
+    if (!body.carries_dofs()) continue;
     double move = 0;
     for (int v = body.vertex_begin; v < body.vertex_end; ++v)
       move = std::max(move, (x_to.row(v) - x_n.row(v)).norm());
@@ -151,7 +146,7 @@ std::vector<int> Sleeping::end_step(const std::vector<ContactConstraint>& contac
   for (int b = 0; b < nb; ++b) touching[b] |= m_jointed[b];
   for (int b = 0; b < nb; ++b) {
     const BodyModel& body = m_model.bodies[b];
-    if (asleep(b) || !carries_dofs(body)) continue;
+    if (asleep(b) || !body.carries_dofs()) continue;
     double speed = 0;
     for (int v = body.vertex_begin; v < body.vertex_end; ++v)
       speed = std::max(speed, surface_velocity.row(v).norm());
