@@ -115,6 +115,7 @@ BulletEngine::BulletEngine(const PeerScene& scene, const BulletSettings& setting
     if (!body.fixed) {
       rigid->setLinearVelocity(bt(body.v0));
       rigid->setAngularVelocity(bt(body.w0));
+      if (!settings.sleeping) rigid->setActivationState(DISABLE_DEACTIVATION);
     }
     m_world->addRigidBody(rigid.get());
     m_bodies.push_back(std::move(rigid));
@@ -128,7 +129,8 @@ BulletEngine::~BulletEngine() {
 }
 
 std::string BulletEngine::name() const {
-  return m_settings.shapes == BulletShapes::meshes ? "bullet_mesh" : "bullet";
+  return std::string(m_settings.shapes == BulletShapes::meshes ? "bullet_mesh" : "bullet") +
+         (m_settings.sleeping ? "" : "-awake");
 }
 
 std::string BulletEngine::settings() const {
@@ -137,11 +139,12 @@ std::string BulletEngine::settings() const {
   std::snprintf(line, sizeof line,
                 "Bullet %d (%s precision), btDiscreteDynamicsWorld + btSequentialImpulseConstraintSolver, "
                 "%d iterations, ERP %.2g (contacts %.2g), CFM %.2g, split impulse %s (below %.3g m), "
-                "warm start %.2g, CCD off, sleeping on; shapes: %d hull, %d GImpact, %d box, %d BVH trimesh; "
+                "warm start %.2g, CCD off, sleeping %s; shapes: %d hull, %d GImpact, %d box, %d BVH trimesh; "
                 "margin %.3g m on hulls/meshes",
                 btGetVersion(), sizeof(btScalar) == 8 ? "double" : "single", s.m_numIterations, double(s.m_erp),
                 double(s.m_erp2), double(s.m_globalCfm), s.m_splitImpulse ? "on" : "off",
-                double(s.m_splitImpulsePenetrationThreshold), double(s.m_warmstartingFactor), m_hulls, m_gimpact,
+                double(s.m_splitImpulsePenetrationThreshold), double(s.m_warmstartingFactor),
+                m_settings.sleeping ? "on" : "off", m_hulls, m_gimpact,
                 m_boxes, m_trimeshes, m_settings.margin);
   return line;
 }

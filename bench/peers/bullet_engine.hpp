@@ -12,7 +12,8 @@
 /// Bodies sit in their principal-axes frames (Bullet takes a diagonal inertia); friction is
 /// √μ per body because Bullet multiplies the two bodies' coefficients; restitution 0
 /// (default). Everything else is Bullet's default: btSequentialImpulseConstraintSolver, 10
-/// iterations, ERP 0.2, split impulse, no CCD, deactivation (sleeping) on, single precision.
+/// iterations, ERP 0.2, split impulse, no CCD, deactivation (sleeping) on unless
+/// BulletSettings::sleeping is false ("bullet_mesh-awake"), single precision.
 
 #include <LinearMath/btScalar.h>
 
@@ -43,6 +44,9 @@ enum class BulletShapes {
 struct BulletSettings {
   double margin = 0.04;                       ///< margin of hull and mesh shapes (m); Bullet's default
   BulletShapes shapes = BulletShapes::hulls;  ///< shape of each body
+  /// Bullet's deactivation: an island below its thresholds for 2 s sleeps (Bullet's default);
+  /// false: every body stays awake (DISABLE_DEACTIVATION), as stiffsoft's bodies by default.
+  bool sleeping = true;
 };
 
 /// Bullet's world for one scene.
@@ -51,7 +55,7 @@ class BulletEngine final : public Engine {
   /// Builds the world.
   BulletEngine(const PeerScene& scene, const BulletSettings& settings);
   ~BulletEngine() override;
-  /// "bullet" (hulls) or "bullet_mesh" (meshes).
+  /// "bullet" (hulls) or "bullet_mesh" (meshes), "-awake" appended without sleeping.
   std::string name() const override;
   std::string settings() const override;
   void step() override;

@@ -16,6 +16,7 @@ std::vector<std::string> available_engines() {
   std::vector<std::string> names{"stiffsoft", "stiffsoft-coarse", "stiffsoft-sleep"};
 #ifdef STIFFSOFT_WITH_BULLET
   names.push_back("bullet_mesh");
+  names.push_back("bullet_mesh-awake");
   names.push_back("bullet");
 #endif
 #ifdef STIFFSOFT_WITH_MUJOCO
@@ -39,10 +40,11 @@ std::unique_ptr<Engine> make_engine(const std::string& name, const PeerScene& sc
     return std::make_unique<StiffsoftEngine>(scene, settings, name);
   }
 #ifdef STIFFSOFT_WITH_BULLET
-  if (name == "bullet" || name == "bullet_mesh") {
+  if (name == "bullet" || name == "bullet_mesh" || name == "bullet_mesh-awake") {
     BulletSettings settings;
     settings.margin = options.bullet_margin > 0 ? options.bullet_margin : 0.5 * scene.dhat;
-    settings.shapes = name == "bullet_mesh" ? BulletShapes::meshes : BulletShapes::hulls;
+    settings.shapes = name == "bullet" ? BulletShapes::hulls : BulletShapes::meshes;
+    settings.sleeping = name != "bullet_mesh-awake";
     return std::make_unique<BulletEngine>(scene, settings);
   }
 #endif

@@ -21,7 +21,8 @@ struct EngineOptions {
 /// "stiffsoft" (the scene's settings), "stiffsoft-coarse" (coarse_settings: libuipc's friction
 /// smoothing and Newton tolerance), "stiffsoft-sleep" (the scene's settings with bodies at rest
 /// put to sleep after EngineOptions::sleep_time, as Bullet does) and the peers compiled in ("bullet_mesh": Bullet with every
-/// dynamic body a triangle mesh, "bullet": Bullet with convex hulls, "mujoco"), in that order.
+/// dynamic body a triangle mesh, "bullet_mesh-awake": the same with Bullet's sleeping off, "bullet": Bullet with convex
+/// hulls, "mujoco"), in that order.
 std::vector<std::string> available_engines();
 
 /// available_engines() joined by ", " (for messages and --help).

@@ -94,7 +94,7 @@ int main(int argc, char** argv) {
           const RunResult r = run_engine(engine, scene, duration, options);
           write_csv_row(out, r);
           const AccuracyReport& a = r.accuracy;
-          std::printf("%-11s %-14s h = %-6s %5d steps  %9.3f ms/step", r.engine.c_str(), r.scene.c_str(),
+          std::printf("%-17s %-14s h = %-6s %5d steps  %9.3f ms/step", r.engine.c_str(), r.scene.c_str(),
                       dt_text.c_str(), r.steps, r.ms_median);
           if (r.newton_mean >= 0) std::printf("  %.2f it.", r.newton_mean);
           std::printf("  intersecting frames %d/%d  overlap %s  engine depth %s  %s%s\n", a.frames_intersecting,
