@@ -22,15 +22,15 @@ stage() {
 
 stage "1/5" "Debian packages (scripts/setup.sh; on a fresh Debian 12 a few hundred packages, minutes)"
 bash scripts/setup.sh
-stage "2/5" "building the library and the stiffsoft program (138 steps cold, 6–8 minutes on 2 cores, the longest stage; [done/total] counts them)"
+stage "2/5" "building the library and the stiffsoft program (151 steps cold, about 6 minutes on 2 cores, the longest stage; [done/total] counts them)"
 bash scripts/build.sh stiffsoft
 stiffsoft=build/release/apps/stiffsoft
 out=out/default
-stage "3/5" "running scenes/default.json into $out (soft ball and block, affine boxes, a ramp; about 30 s)"
+stage "3/5" "running scenes/default.json into $out (soft ball and block, affine boxes, a ramp; seconds)"
 $stiffsoft run scenes/default.json -o "$out"
 stage "4/5" "checking every frame for intersecting triangles"
 $stiffsoft check "$out/default.pvd"
-stage "5/5" "rendering the frames to pictures (off screen, about 40 s)"
+stage "5/5" "rendering the frames to pictures (off screen, under a minute)"
 $stiffsoft render "$out/default.pvd" -o "$out/png" --mp4
 if [ "$python" = 1 ]; then
   stage "+" "building and installing the Python module (docs/python.md)"

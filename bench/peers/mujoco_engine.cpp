@@ -47,8 +47,10 @@ MujocoEngine::MujocoEngine(const PeerScene& scene, const MjcfSizes& sizes) : m_s
       m_fixed[i] = {body.R0, body.c0};
       continue;
     }
-    const int id = mj_name2id(m_model, mjOBJ_BODY, ("b" + std::to_string(i)).c_str());
-    if (id < 0) throw std::logic_error("MuJoCo model lacks body b" + std::to_string(i));
+    std::string name = "b";  // appended, not "b" + …: GCC 12 warns falsely (-Wrestrict) on that
+    name += std::to_string(i);
+    const int id = mj_name2id(m_model, mjOBJ_BODY, name.c_str());
+    if (id < 0) throw std::logic_error("MuJoCo model lacks body " + name);
     m_body[i] = id;
     // Free joint: qvel = (linear velocity, world frame; angular velocity, body frame).
     const int dof = m_model->jnt_dofadr[m_model->body_jntadr[id]];

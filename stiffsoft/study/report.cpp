@@ -23,7 +23,10 @@ std::string num(double v, const char* format = "%.4g") {
 
 std::string vec(const Eigen::VectorXd& v, const char* format = "%.10g") {
   std::string s;
-  for (Eigen::Index i = 0; i < v.size(); ++i) s += (i ? " " : "") + num(v[i], format);
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    if (i) s += ' ';
+    s += num(v[i], format);
+  }
   return s;
 }
 

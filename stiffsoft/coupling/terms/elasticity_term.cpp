@@ -18,7 +18,8 @@ ElasticityTerm::ElasticityTerm(const Model& model, double scale) : m_model(model
     m_bodies.push_back({b, body.node_begin, std::make_unique<fem::ElasticEnergy>(
                                              model.nodes.X.middleRows(body.node_begin, n), T,
                                              fem::make_material(body.material.model, body.material.young,
-                                                                body.material.poisson))});
+                                                                body.material.poisson)),
+                         {}, {}, {}});
     index_pairs(m_bodies.back());
   }
 }
