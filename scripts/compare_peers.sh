@@ -2,8 +2,8 @@
 # stiffsoft side by side with Bullet and MuJoCo (docs/peers.md), in one command: builds
 # peer_bench if needed, runs every scene at h = 1/100, 1/240, 1/1000 with each engine compiled
 # in (stiffsoft, stiffsoft-coarse, stiffsoft-sleep, bullet_mesh: Bullet on triangle meshes,
-# bullet_mesh-awake: the same with Bullet's sleeping off, bullet: Bullet on convex hulls, mujoco;
-# --engines picks some), and writes the CSV, the Markdown table and the
+# bullet_mesh-awake: the same with Bullet's sleeping off, bullet: Bullet on convex hulls, mujoco,
+# mujoco-cg: MuJoCo with its CG solver; --engines picks some), and writes the CSV, the Markdown table and the
 # plot (ms/step vs bodies at h = 1/240).
 #
 #   scripts/compare_peers.sh                      # everything, 2 s simulated per run

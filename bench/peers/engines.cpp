@@ -21,6 +21,7 @@ std::vector<std::string> available_engines() {
 #endif
 #ifdef STIFFSOFT_WITH_MUJOCO
   names.push_back("mujoco");
+  names.push_back("mujoco-cg");
 #endif
   return names;
 }
@@ -49,14 +50,14 @@ std::unique_ptr<Engine> make_engine(const std::string& name, const PeerScene& sc
   }
 #endif
 #ifdef STIFFSOFT_WITH_MUJOCO
-  if (name == "mujoco") {
+  if (name == "mujoco" || name == "mujoco-cg") {
     int geoms = 0;
     for (const PeerBody& body : scene.bodies)
       if (!body.fixed) geoms += body.torus ? body.torus->n : 1;
     MjcfSizes sizes;
     sizes.nconmax = options.mujoco_nconmax > 0 ? options.mujoco_nconmax : 4 * geoms + 200;
     sizes.njmax = options.mujoco_njmax > 0 ? options.mujoco_njmax : 4 * sizes.nconmax;
-    return std::make_unique<MujocoEngine>(scene, sizes);
+    return std::make_unique<MujocoEngine>(scene, sizes, name, name == "mujoco-cg" ? "CG" : "");
   }
 #endif
   throw std::invalid_argument("engine '" + name + "' is not available in this build (available: " +

@@ -20,9 +20,10 @@ struct EngineOptions {
 
 /// "stiffsoft" (the scene's settings), "stiffsoft-coarse" (coarse_settings: libuipc's friction
 /// smoothing and Newton tolerance), "stiffsoft-sleep" (the scene's settings with bodies at rest
-/// put to sleep after EngineOptions::sleep_time, as Bullet does) and the peers compiled in ("bullet_mesh": Bullet with every
-/// dynamic body a triangle mesh, "bullet_mesh-awake": the same with Bullet's sleeping off, "bullet": Bullet with convex
-/// hulls, "mujoco"), in that order.
+/// put to sleep after EngineOptions::sleep_time, as Bullet does) and the peers compiled in ("bullet_mesh":
+/// Bullet with every dynamic body a triangle mesh, "bullet_mesh-awake": the same with Bullet's sleeping off,
+/// "bullet": Bullet with convex hulls, "mujoco": MuJoCo's default settings, "mujoco-cg": the same with its CG
+/// solver), in that order.
 std::vector<std::string> available_engines();
 
 /// available_engines() joined by ", " (for messages and --help).

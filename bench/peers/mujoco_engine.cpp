@@ -6,10 +6,14 @@
 #include <cstring>
 #include <memory>
 #include <stdexcept>
+#include <utility>
 
 namespace stiffsoft::peers {
 
 namespace {
+
+/// MuJoCo's constraint solvers' names, in mjtSolver's order.
+const char* const kSolvers[] = {"PGS", "CG", "Newton"};
 
 Eigen::Matrix3d matrix(const mjtNum* m) {
   Eigen::Matrix3d R;
@@ -20,7 +24,14 @@ Eigen::Matrix3d matrix(const mjtNum* m) {
 
 }  // namespace
 
-MujocoEngine::MujocoEngine(const PeerScene& scene, const MjcfSizes& sizes) : m_sizes(sizes) {
+MujocoEngine::MujocoEngine(const PeerScene& scene, const MjcfSizes& sizes, std::string name,
+                           const std::string& solver)
+    : m_name(std::move(name)), m_sizes(sizes) {
+  int solver_id = -1;
+  for (int s = 0; s < 3; ++s)
+    if (solver == kSolvers[s]) solver_id = s;
+  if (!solver.empty() && solver_id < 0)
+    throw std::invalid_argument("MuJoCo solver '" + solver + "': expected PGS, CG or Newton");
   const std::string xml = make_mjcf(scene, sizes);
   auto vfs = std::make_unique<mjVFS>();
   mj_defaultVFS(vfs.get());
@@ -32,6 +43,7 @@ MujocoEngine::MujocoEngine(const PeerScene& scene, const MjcfSizes& sizes) : m_s
   m_model = mj_loadXML(file, vfs.get(), error, sizeof error);
   mj_deleteVFS(vfs.get());
   if (!m_model) throw std::runtime_error(scene.file.string() + ": MuJoCo rejects the generated MJCF: " + error);
+  if (solver_id >= 0) m_model->opt.solver = solver_id;
   m_data = mj_makeData(m_model);
   if (!m_data) throw std::runtime_error(scene.file.string() + ": MuJoCo cannot allocate mjData (njmax = " +
                                         std::to_string(sizes.njmax) + ")");
@@ -71,20 +83,20 @@ MujocoEngine::~MujocoEngine() {
 std::string MujocoEngine::settings() const {
   const mjOption& o = m_model->opt;
   static const char* integrators[] = {"Euler (semi-implicit)", "RK4", "implicit"};
-  static const char* solvers[] = {"PGS", "CG", "Newton"};
   static const char* cones[] = {"pyramidal", "elliptic"};
   static const char* jacobians[] = {"dense", "sparse", "auto"};
   const mjtNum* ref = m_model->geom_solref;
   const mjtNum* imp = m_model->geom_solimp;
   char line[768];
-  std::snprintf(line, sizeof line,
-                "MuJoCo %s, %s integrator, %s solver, %d iterations, tolerance %.3g, %s cone, noslip %d it., "
-                "impratio %.3g, %s Jacobian, contacts solref (%.3g, %.3g) solimp (%.3g, %.3g, %.3g), margin 0, "
-                "condim 3, MPR %d it. tol. %.3g; %d geoms, %d meshes; buffers nconmax %d, njmax %d",
-                mj_versionString(), integrators[o.integrator], solvers[o.solver], o.iterations, o.tolerance,
-                cones[o.cone], o.noslip_iterations, o.impratio, jacobians[o.jacobian], ref[0], ref[1], imp[0],
-                imp[1], imp[2], o.mpr_iterations, o.mpr_tolerance, m_model->ngeom, m_model->nmesh,
-                m_sizes.nconmax, m_sizes.njmax);
+  std::snprintf(
+      line, sizeof line,
+      "MuJoCo %s, %s integrator, %s solver, %d iterations, tolerance %.3g, %s cone, noslip %d it., "
+      "impratio %.3g, %s Jacobian, contacts solref (%.3g, %.3g) solimp (%.3g, %.3g, %.3g), margin 0, "
+      "condim 3, MPR %d it. tol. %.3g; %d geoms, %d meshes; buffers nconmax %d, njmax %d",
+      mj_versionString(), integrators[o.integrator], kSolvers[o.solver], o.iterations, o.tolerance,
+      cones[o.cone], o.noslip_iterations, o.impratio, jacobians[o.jacobian], ref[0], ref[1], imp[0], imp[1],
+      imp[2], o.mpr_iterations, o.mpr_tolerance, m_model->ngeom, m_model->nmesh, m_sizes.nconmax,
+      m_sizes.njmax);
   return line;
 }
 

@@ -3,7 +3,8 @@
 ///
 /// The model is peers/mjcf.hpp's text, compiled from memory. Solver settings are MuJoCo's
 /// defaults (semi-implicit Euler, Newton solver, 100 iterations, tolerance 1e-8, pyramidal
-/// cone, no noslip, soft contacts with solref (0.02, 1)); settings() prints what is in force.
+/// cone, no noslip, soft contacts with solref (0.02, 1)), the constraint solver optionally
+/// another; settings() prints what is in force.
 /// MuJoCo 2.2 preallocates its contact and constraint buffers: their sizes are arguments, and a
 /// run that overflows them says so in warnings(). After mj_step, MuJoCo's body poses (xpos,
 /// xmat) still describe the state before the step's integration; pose() recomputes them
@@ -24,11 +25,14 @@ namespace stiffsoft::peers {
 /// MuJoCo's model and data for one scene.
 class MujocoEngine final : public Engine {
  public:
-  /// Compiles the scene's MJCF and sets the initial velocities; throws std::runtime_error
-  /// with MuJoCo's message when the model does not compile.
-  MujocoEngine(const PeerScene& scene, const MjcfSizes& sizes);
+  /// Compiles the scene's MJCF and sets the initial velocities; `solver` ("PGS", "CG" or
+  /// "Newton"; empty: MuJoCo's default) replaces the model's constraint solver, and the engine
+  /// reports itself as `name`. Throws std::runtime_error with MuJoCo's message when the model
+  /// does not compile, and std::invalid_argument for another solver name.
+  MujocoEngine(const PeerScene& scene, const MjcfSizes& sizes, std::string name = "mujoco",
+               const std::string& solver = "");
   ~MujocoEngine() override;
-  std::string name() const override { return "mujoco"; }
+  std::string name() const override { return m_name; }
   std::string settings() const override;
   void step() override;
   std::vector<Penetration> penetrations() override;
@@ -42,6 +46,7 @@ class MujocoEngine final : public Engine {
   std::string statistics() const override;
 
  private:
+  std::string m_name;
   mjModel_* m_model = nullptr;
   mjData_* m_data = nullptr;
   MjcfSizes m_sizes;

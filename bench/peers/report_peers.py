@@ -19,11 +19,11 @@ import re
 import os
 import sys
 
-ENGINES = ["stiffsoft", "stiffsoft-coarse", "stiffsoft-sleep", "bullet_mesh", "bullet_mesh-awake", "bullet", "mujoco"]
+ENGINES = ["stiffsoft", "stiffsoft-coarse", "stiffsoft-sleep", "bullet_mesh", "bullet_mesh-awake", "bullet", "mujoco", "mujoco-cg"]
 OURS = ["stiffsoft", "stiffsoft-coarse", "stiffsoft-sleep"]
 LABEL = {"stiffsoft": "stiffsoft", "stiffsoft-coarse": "stiffsoft coarse", "stiffsoft-sleep": "stiffsoft sleeping",
          "bullet_mesh": "Bullet mesh", "bullet_mesh-awake": "Bullet mesh awake",
-         "bullet": "Bullet", "mujoco": "MuJoCo"}
+         "bullet": "Bullet", "mujoco": "MuJoCo", "mujoco-cg": "MuJoCo CG"}
 # The seed's Bullet set-up: every body a triangle mesh (GImpact), as in the ABD and Rigid-IPC papers;
 # its table is set beside the first of these that the CSVs hold.
 SEED_PEERS = ["bullet_mesh", "bullet"]
@@ -211,7 +211,7 @@ def plot(rows, path, per_s=240):
               f"no plot written to {path}", file=sys.stderr)
         return False
     fig, ax = plt.subplots(figsize=(7, 4.5))
-    markers = {"stiffsoft": "o", "stiffsoft-coarse": "D", "stiffsoft-sleep": "P", "bullet_mesh": "v", "bullet_mesh-awake": "<", "bullet": "s", "mujoco": "^"}
+    markers = {"stiffsoft": "o", "stiffsoft-coarse": "D", "stiffsoft-sleep": "P", "bullet_mesh": "v", "bullet_mesh-awake": "<", "bullet": "s", "mujoco": "^", "mujoco-cg": ">"}
     for e in ENGINES:
         points = sorted((int(r["bodies"]), num(r, "ms_median"), r["scene"]) for (en, s, p), r in rows.items()
                         if en == e and p == per_s and not unfinished(r))
