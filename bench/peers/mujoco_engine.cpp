@@ -2,8 +2,10 @@
 
 #include <mujoco/mujoco.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <iterator>
 #include <memory>
 #include <stdexcept>
 #include <utility>
@@ -27,10 +29,8 @@ Eigen::Matrix3d matrix(const mjtNum* m) {
 MujocoEngine::MujocoEngine(const PeerScene& scene, const MjcfSizes& sizes, std::string name,
                            const std::string& solver)
     : m_name(std::move(name)), m_sizes(sizes) {
-  int solver_id = -1;
-  for (int s = 0; s < 3; ++s)
-    if (solver == kSolvers[s]) solver_id = s;
-  if (!solver.empty() && solver_id < 0)
+  const auto* const named = std::find(std::begin(kSolvers), std::end(kSolvers), solver);
+  if (!solver.empty() && named == std::end(kSolvers))
     throw std::invalid_argument("MuJoCo solver '" + solver + "': expected PGS, CG or Newton");
   const std::string xml = make_mjcf(scene, sizes);
   auto vfs = std::make_unique<mjVFS>();
@@ -43,7 +43,7 @@ MujocoEngine::MujocoEngine(const PeerScene& scene, const MjcfSizes& sizes, std::
   m_model = mj_loadXML(file, vfs.get(), error, sizeof error);
   mj_deleteVFS(vfs.get());
   if (!m_model) throw std::runtime_error(scene.file.string() + ": MuJoCo rejects the generated MJCF: " + error);
-  if (solver_id >= 0) m_model->opt.solver = solver_id;
+  if (!solver.empty()) m_model->opt.solver = int(named - std::begin(kSolvers));
   m_data = mj_makeData(m_model);
   if (!m_data) throw std::runtime_error(scene.file.string() + ": MuJoCo cannot allocate mjData (njmax = " +
                                         std::to_string(sizes.njmax) + ")");
