@@ -98,12 +98,13 @@ def main():
         fig, axes = plt.subplots(1, 2, figsize=(10, 4.2), sharey=True)
         for ax, column, label, exponent in ((axes[0], 1, "bodies", by_bodies), (axes[1], 2, "contacts (mean per iteration)", by_contacts)):
             xs = [p[column] for p in points]
-            ax.loglog(xs, [p[3] for p in points], "o-", color="tab:blue")
+            ax.loglog(xs, [p[3] for p in points], "o", color="tab:blue")  # not joined: scenes of several kinds
             for p in points:
                 ax.annotate(p[0], (p[column], p[3]), textcoords="offset points", xytext=(5, -12), fontsize=8)
             if len(points) > 1:
                 x0, m0 = xs[0], points[0][3]
-                ax.loglog(xs, [m0 * (x / x0) ** 1.1 for x in xs], "--", color="gray", label="n^1.1 from the first point")
+                guide = sorted(xs)
+                ax.loglog(guide, [m0 * (x / x0) ** 1.1 for x in guide], "--", color="gray", label="n^1.1 from the first point")
                 ax.legend(fontsize=8)
                 ax.set_title(f"fitted exponent {exponent:.2f}")
             ax.set_xlabel(label)

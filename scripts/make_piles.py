@@ -9,6 +9,7 @@ contact.dhat or its default 1e-3 × bounding-box diagonal.
 
     python3 scripts/make_piles.py            # writes scenes/*.json, prints triangle counts
     python3 scripts/make_piles.py --check    # only checks, writes nothing
+    python3 scripts/make_piles.py --verify   # checks, and fails where a file of scenes/ differs
 
 Triangle counts follow stiffsoft/meshing/primitive.cpp: box and plane 12; UV sphere with n
 segments: rings = max(2, n // 2), 2 n (rings − 1); cylinder with n segments: 4 n;
@@ -585,6 +586,7 @@ def make_chain_net():
 
 def main():
     only_check = "--check" in sys.argv
+    verify = "--verify" in sys.argv
     scenes = {}
     for name in PILES:
         scene, tris = make_pile(name)
@@ -604,13 +606,22 @@ def main():
     scenes["chain_net"] = make_chain_net()
     scenes["bricks_900"] = make_brick_pile("bricks_900", 10, 10)
     scenes["bricks_2400"] = make_brick_pile("bricks_2400", 16, 10)
+    differing = []
     for name, scene in scenes.items():
         dhat, (worst, pair) = check_scene(name, scene)
         print(f"{name}: d̂ = {dhat:.3g} m, smallest gap (lower bound) {worst:.4g} m between {pair}")
-        if not only_check:
-            with open(os.path.join(SCENES, name + ".json"), "w", encoding="utf-8") as f:
-                json.dump(rounded(scene), f, indent=1, ensure_ascii=False)
-                f.write("\n")
+        text = json.dumps(rounded(scene), indent=1, ensure_ascii=False) + "\n"
+        path = os.path.join(SCENES, name + ".json")
+        if verify:
+            with open(path, encoding="utf-8") as f:
+                if f.read() != text:
+                    differing.append(path)
+        elif not only_check:
+            with open(path, "w", encoding="utf-8") as f:
+                f.write(text)
+    if differing:
+        sys.exit("make_piles: these files differ from what the generator writes (edit the generator, "
+                 "then run it): " + ", ".join(differing))
 
 
 if __name__ == "__main__":
