@@ -730,6 +730,36 @@ TEST(AutoSolver, KeepsTheBlockCholeskyUpToItsOwnFlopBoundThenTakesBlockCg) {
   }
 }
 
+TEST(AutoSolver, AsksTheBlockCholeskyAboveTheRowsBoundAndNotCholmod) {
+  // A chain of affine bodies, each coupled to the next, over kAutoKrylovRows rows: its block
+  // factor has no fill, so the block Cholesky is asked and kept (on a 5,000-body pile of full's
+  // kind its solve phase took half of block_cg's: docs/benchmarks.md, session 72). Read as soft nodes'
+  // 3-blocks, the same matrix goes to the Krylov method without asking CHOLMOD, as before.
+  const int bodies = kAutoKrylovRows / 12 + 1;
+  std::vector<Eigen::Triplet<double>> t;
+  for (int b = 0; b < bodies; ++b)
+    for (int r = 0; r < 12; ++r) {
+      t.emplace_back(12 * b + r, 12 * b + r, 4.0 + 0.01 * r);
+      if (r + 1 < 12) t.emplace_back(12 * b + r, 12 * b + r + 1, 0.5);
+      if (b + 1 < bodies) t.emplace_back(12 * b + r, 12 * (b + 1) + r, -1.0);
+    }
+  Eigen::SparseMatrix<double> A(12 * bodies, 12 * bodies);
+  A.setFromTriplets(t.begin(), t.end());
+  A.makeCompressed();
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(A.rows(), -1, 1);
+  for (const auto& [size, expected] : {std::pair{12, std::string("auto→block_cholesky")},
+                                       std::pair{3, std::string("auto→petsc:cg:icc")}}) {
+    AutoSolver solver;
+    solver.set_relative_tolerance(1e-10);
+    solver.set_block_sizes(std::vector<int>(A.rows() / size, size));
+    solver.analyze_pattern(A);
+    ASSERT_TRUE(solver.factorize(A));
+    const Eigen::VectorXd p = solver.solve(b);
+    EXPECT_EQ(solver.name(), expected) << A.rows() << " rows";
+    EXPECT_LE((b - A.selfadjointView<Eigen::Upper>() * p).norm() / b.norm(), 1e-9);
+  }
+}
+
 TEST(AutoSolver, ARestoredMemoryKeepsTheBackendAsTheUninterruptedRunHadIt) {
   // A run that chose the block Cholesky at some pattern keeps it while the pattern stays within
   // kAutoRedecideChange of that size, even where a fresh decision would take block_cg: a resumed

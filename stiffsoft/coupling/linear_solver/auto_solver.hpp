@@ -27,18 +27,22 @@ constexpr double kAutoCholmodFlops = 2e6;
 constexpr double kAutoBlockCholeskyFlops = 2e7;
 
 /// Rows from which "auto" takes the Krylov method without asking CHOLMOD: its analysis alone
-/// costs about as much as a Krylov solve there (81 000 rows: 1 s against 0.4–0.7 s).
+/// costs about as much as a Krylov solve there (81 000 rows: 1 s against 0.4–0.7 s). The block
+/// Cholesky is asked at any size, but not again above it after giving way to block_cg while the
+/// pattern grows: its analysis of a 5,000-body pile took 1–7 ms (full's kind, which it then
+/// factorised at 12 Mflop, the solve phase half of block_cg's) to 0.6 s (a 5,066-cube pile at
+/// 34 Gflop, left to block_cg; docs/benchmarks.md, session 72).
 constexpr int kAutoKrylovRows = 50000;
 
 /// The analysis is repeated only when the number of stored entries moved by more than this
 /// fraction since the last decision (contacts come and go at every few Newton iterations).
 constexpr double kAutoRedecideChange = 0.25;
 
-/// Delegates to a direct solver or to a Krylov one: below kAutoKrylovRows rows
-/// the block Cholesky (when every DOF block given by set_block_sizes() is an affine body's 12:
-/// its 12×12 dense blocks factorise 2.7–3.4× faster than CHOLMOD's simplicial method,
-/// docs/benchmarks.md) analyses the pattern and is kept when it predicts at most
-/// kAutoBlockCholeskyFlops, or else CHOLMOD does and is kept at most kAutoCholmodFlops for the
+/// Delegates to a direct solver or to a Krylov one: when every DOF block given by
+/// set_block_sizes() is an affine body's 12, the block Cholesky (its 12×12 dense blocks factorise
+/// 2.7–3.4× faster than CHOLMOD's simplicial method, docs/benchmarks.md) analyses the pattern and
+/// is kept when it predicts at most kAutoBlockCholeskyFlops; otherwise, below kAutoKrylovRows
+/// rows, CHOLMOD does and is kept at most kAutoCholmodFlops for the
 /// factorisation (soft nodes' 3×3 blocks fill like a 3-D mesh,
 /// which CHOLMOD's supernodes and PETSc handle better); otherwise "block_cg" when every DOF
 /// block is an affine body's (its 12×12 IC(0) in parallel, solve phase 1.5–1.9× cheaper than
