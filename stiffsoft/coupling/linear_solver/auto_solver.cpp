@@ -53,8 +53,8 @@ void AutoSolver::choose(long nonzeros, int rows, const std::function<void(Linear
     return;
   }
   // Above kAutoKrylovRows only the block Cholesky is asked, and not again once it has given way
-  // to block_cg while the pattern grows: its prediction grows with it (the analysis of a
-  // 5,066-cube pile's took 0.4–0.6 s).
+  // to block_cg while the pattern grows: its prediction grows with it (its analysis of a
+  // 5,066-cube pile took 0.4–0.6 s).
   const bool grown_past_direct = m_backend && m_choice.krylov && nonzeros > m_choice.decided_nonzeros;
   m_choice.decided_nonzeros = nonzeros;
   if (rows < kAutoKrylovRows || (affine_bodies_only(rows) && !grown_past_direct)) {
