@@ -84,7 +84,7 @@ class LinearSolver {
 ///  - "petsc:KSP" or "petsc:KSP:PC": KSP ∈ {cg, minres, gmres}, PC ∈ {none, jacobi, pbjacobi
 ///    (3×3 blocks), vpbjacobi (DOF blocks, 12×12 / 3×3), icc, gamg, hypre (BoomerAMG)}, e.g.
 ///    "petsc:cg:gamg"; PETSc's options database (-ksp_type, -pc_type, -ksp_rtol, …) applies on top;
-///  - "auto": CHOLMOD or PETSc chosen from the system size at analyze_pattern() (see AutoSolver);
+///  - "auto": a direct or a Krylov backend chosen from the predicted factorisation cost (see AutoSolver);
 ///  - any name added with register_linear_solver().
 /// PETSc backends start PETSc (ensure_petsc_initialized()) if main has not.
 std::unique_ptr<LinearSolver> make_linear_solver(const std::string& name);
