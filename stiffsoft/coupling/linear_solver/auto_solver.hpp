@@ -41,8 +41,9 @@ constexpr double kAutoRedecideChange = 0.25;
 /// Delegates to a direct solver or to a Krylov one: when every DOF block given by
 /// set_block_sizes() is an affine body's 12, the block Cholesky (its 12×12 dense blocks factorise
 /// 2.7–3.4× faster than CHOLMOD's simplicial method, docs/benchmarks.md) analyses the pattern and
-/// is kept when it predicts at most kAutoBlockCholeskyFlops; otherwise, below kAutoKrylovRows
-/// rows, CHOLMOD does and is kept at most kAutoCholmodFlops for the
+/// is kept when it predicts at most kAutoBlockCholeskyFlops (above kAutoKrylovRows rows it is not
+/// asked again after giving way to block_cg while the pattern grows); with soft nodes, below
+/// kAutoKrylovRows rows, CHOLMOD analyses it and is kept at most kAutoCholmodFlops for the
 /// factorisation (soft nodes' 3×3 blocks fill like a 3-D mesh,
 /// which CHOLMOD's supernodes and PETSc handle better); otherwise "block_cg" when every DOF
 /// block is an affine body's (its 12×12 IC(0) in parallel, solve phase 1.5–1.9× cheaper than
